@@ -1,0 +1,20 @@
+// Shared plumbing of uwcolmap commands: COLMAP-style flags parsed with
+// CLI11, and one place that turns a uw::Error into a message and exit code.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace uw {
+
+// Runs `body` and maps failures to exit codes: 0 success, 1 uw::Error or
+// other failure (message printed as "ERROR: ..." on stderr), 2 bad flags.
+int RunCommand(CLI::App& app, int argc, char** argv,
+               const std::function<void()>& body);
+
+// COLMAP writes booleans on its command line as 0/1 (also true/false).
+bool ParseColmapBool(const std::string& value, const std::string& flag);
+
+}  // namespace uw

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Sets up a Debian 12 machine for uwmetric and builds it into build/.
+#
+# Installs the Debian packages uwmetric needs (only those missing; one
+# `apt-get update` when something is missing; non-interactive), then
+# configures with CMake + Ninja (+ ccache) and builds. Safe to run again:
+# a second run installs nothing and rebuilds only what changed.
+#
+#   bash scripts/setup.sh            # build type RelWithDebInfo
+#   UW_BUILD_TYPE=Release bash scripts/setup.sh
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_dir="${UW_BUILD_DIR:-$root/build}"
+
+packages=(
+  # toolchain
+  cmake ninja-build ccache g++ pkg-config clang-format
+  # stock COLMAP 3.8: the program our tests compare against
+  colmap
+  # libraries (DESIGN.md §3)
+  libeigen3-dev libceres-dev libsqlite3-dev sqlite3 libcli11-dev
+  libopencv-dev libgtest-dev
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null |
+      grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+
+if ((${#missing[@]} > 0)); then
+  sudo=()
+  if [[ $(id -u) -ne 0 ]]; then sudo=(sudo); fi
+  echo "[setup] installing ${#missing[@]} Debian packages: ${missing[*]}"
+  "${sudo[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq \
+    --no-install-recommends "${missing[@]}"
+else
+  echo "[setup] all ${#packages[@]} Debian packages already installed"
+fi
+
+echo "[setup] configuring and building in $build_dir"
+mkdir -p "$build_dir"
+cmake -S "$root" -B "$build_dir" -G Ninja \
+  -DCMAKE_BUILD_TYPE="${UW_BUILD_TYPE:-RelWithDebInfo}" > "$build_dir/configure.log" 2>&1 ||
+  { cat "$build_dir/configure.log"; exit 1; }
+cmake --build "$build_dir" -j"$(nproc)"
+echo "[setup] done: binaries in $build_dir/bin"
