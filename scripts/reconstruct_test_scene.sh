@@ -30,7 +30,8 @@ run render "$render" --out "$out/scene" --num_images 12
 run feature_extractor colmap feature_extractor \
   --database_path "$out/database.db" --image_path "$out/scene/images" \
   --ImageReader.single_camera 1 --ImageReader.camera_model SIMPLE_RADIAL \
-  --SiftExtraction.use_gpu 0 --SiftExtraction.max_num_features 2000
+  --SiftExtraction.use_gpu 0 --SiftExtraction.max_num_features 2000 \
+  --SiftExtraction.first_octave 0
 run exhaustive_matcher colmap exhaustive_matcher \
   --database_path "$out/database.db" --SiftMatching.use_gpu 0
 run mapper colmap mapper --database_path "$out/database.db" \

@@ -8,6 +8,7 @@
 
 #include "colmap_plugins/scene/database.h"
 #include "colmap_plugins/scene/model_io.h"
+#include "colmap_plugins/util/file.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -19,6 +20,14 @@ using testing::Quoted;
 using testing::RunProcess;
 
 const fs::path kSceneDir = UW_SCENE_DIR;
+const fs::path kUwcolmap = fs::path(UW_BIN_DIR) / "uwcolmap";
+
+std::string Shell(const fs::path& database, const std::string& sql) {
+  const auto result =
+      RunProcess("sqlite3 " + Quoted(database) + " '" + sql + "'", true);
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  return result.output.substr(0, result.output.find('\n'));
+}
 
 std::map<std::string, Eigen::Vector3d> TrueCentres() {
   std::map<std::string, Eigen::Vector3d> centres;
@@ -44,7 +53,8 @@ TEST(ColmapDatabase, KeypointsAreTheModelsPoints2D) {
     const auto db_image = database.ReadImageWithName(image.name);
     ASSERT_TRUE(db_image.has_value()) << image.name;
     EXPECT_EQ(db_image->image_id, image.image_id);
-    const FeatureKeypointsBlob keypoints = database.ReadKeypoints(image.image_id);
+    const FeatureKeypointsBlob keypoints =
+        database.ReadKeypoints(image.image_id);
     ASSERT_EQ(static_cast<size_t>(keypoints.rows()), image.points2D.size());
     for (Eigen::Index i = 0; i < keypoints.rows(); ++i) {
       ASSERT_EQ(static_cast<double>(keypoints(i, 0)), image.points2D[i].xy.x());
@@ -71,17 +81,14 @@ TEST(ColmapDatabase, KeypointsAreTheModelsPoints2D) {
     EXPECT_LT(geometry.inlier_matches.col(1).maxCoeff(),
               database.ReadKeypoints(image_id2).rows());
   }
-  const auto shell = RunProcess(
-      "sqlite3 " + Quoted(kSceneDir / "database.db") +
-          " 'SELECT count(*) FROM two_view_geometries WHERE rows > 0'",
-      true);
-  ASSERT_EQ(shell.exit_code, 0) << shell.output;
-  EXPECT_EQ(std::to_string(num_verified) + "\n", shell.output);
+  EXPECT_EQ(std::to_string(num_verified),
+            Shell(kSceneDir / "database.db",
+                  "SELECT count(*) FROM two_view_geometries WHERE rows > 0"));
   EXPECT_GE(num_verified, 40u);
-  std::printf("[ figures ] %zu keypoints in %zu images, %zu of %zu pairs "
-              "verified\n",
-              num_keypoints, model.Images().size(), num_verified,
-              geometries.size());
+  std::printf(
+      "[ figures ] %zu keypoints in %zu images, %zu of %zu pairs "
+      "verified\n",
+      num_keypoints, model.Images().size(), num_verified, geometries.size());
 }
 
 // Priors we write into colmap's 3.8 database are what colmap's own
@@ -106,13 +113,13 @@ TEST(ColmapDatabase, PosePriorsWeWriteAreUsedByColmapModelAligner) {
   }
   const Reconstruction before = ReadModel(kSceneDir / "sparse" / "0");
   fs::create_directories(dir / "aligned");
-  const auto aligned = RunProcess(
-      "colmap model_aligner --input_path " +
-          Quoted(kSceneDir / "sparse" / "0") + " --output_path " +
-          Quoted(dir / "aligned") + " --database_path " +
-          Quoted(dir / "database.db") +
-          " --ref_is_gps 0 --robust_alignment_max_error 0.05",
-      true);
+  const auto aligned =
+      RunProcess("colmap model_aligner --input_path " +
+                     Quoted(kSceneDir / "sparse" / "0") + " --output_path " +
+                     Quoted(dir / "aligned") + " --database_path " +
+                     Quoted(dir / "database.db") +
+                     " --ref_is_gps 0 --robust_alignment_max_error 0.05",
+                 true);
   ASSERT_EQ(aligned.exit_code, 0) << aligned.output;
   const Reconstruction after = ReadModel(dir / "aligned");
   double error_before = 0.0;
@@ -125,11 +132,63 @@ TEST(ColmapDatabase, PosePriorsWeWriteAreUsedByColmapModelAligner) {
   }
   error_before /= after.Images().size();
   error_after /= after.Images().size();
-  std::printf("[ figures ] mean camera centre error vs truth: %.4f m before, "
-              "%.5f m after colmap model_aligner with our priors\n",
-              error_before, error_after);
+  std::printf(
+      "[ figures ] mean camera centre error vs truth: %.4f m before, "
+      "%.5f m after colmap model_aligner with our priors\n",
+      error_before, error_after);
   EXPECT_GT(error_before, 0.5);
   EXPECT_LT(error_after, 0.01);
+}
+
+TEST(ColmapDatabase, DatabaseAnalyzerCountsWhatTheSqliteShellCounts) {
+  const fs::path db = kSceneDir / "database.db";
+  const auto result = RunProcess(
+      kUwcolmap.string() + " database_analyzer --database_path " + Quoted(db),
+      true);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const std::string expected =
+      "Schema: COLMAP 3.8/3.9\n"
+      "Cameras: " +
+      Shell(db, "SELECT count(*) FROM cameras") + "\n" +
+      "Images: " + Shell(db, "SELECT count(*) FROM images") + "\n" +
+      "Images with keypoints: " +
+      Shell(db, "SELECT count(*) FROM keypoints WHERE rows > 0") + "\n" +
+      "Keypoints: " + Shell(db, "SELECT sum(rows) FROM keypoints") + "\n" +
+      "Matched pairs: " + Shell(db, "SELECT count(*) FROM matches") + "\n" +
+      "Verified pairs: " +
+      Shell(db, "SELECT count(*) FROM two_view_geometries WHERE rows > 0") +
+      "\n" + "Inlier matches: " +
+      Shell(db, "SELECT sum(rows) FROM two_view_geometries") + "\n" +
+      "Pose priors: 0 (0 with position covariance)\n";
+  EXPECT_EQ(result.output, expected);
+}
+
+// A database that lacks a table is refused with the file and table named, a
+// non-zero exit, and neither the file nor its folder changed.
+TEST(ColmapDatabase, DatabaseAnalyzerRejectsMissingTable) {
+  const fs::path dir = FreshTestDir("uw_colmap_database_test");
+  const fs::path db = dir / "database.db";
+  fs::copy_file(kSceneDir / "database.db", db);
+  Shell(db, "DROP TABLE two_view_geometries");
+  const std::string before = ReadFileToString(db);
+  const auto result = RunProcess(
+      kUwcolmap.string() + " database_analyzer --database_path " + Quoted(db),
+      true);
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find(db.string() + ": "), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("'two_view_geometries' is missing"),
+            std::string::npos)
+      << result.output;
+  EXPECT_TRUE(ReadFileToString(db) == before);
+  // colmap keeps its database in WAL mode, where SQLite itself adds the
+  // -shm/-wal companions for any reader; nothing else may appear.
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_TRUE(name == "database.db" || name == "database.db-shm" ||
+                name == "database.db-wal")
+        << name;
+  }
 }
 
 }  // namespace

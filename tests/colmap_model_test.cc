@@ -54,7 +54,8 @@ TextRecords SplitRecords(const std::string& text, bool two_lines_per_record) {
       record += "\n" + second;
     }
     const std::string id = line.substr(0, line.find(' '));
-    EXPECT_TRUE(result.records.emplace(id, record).second) << "duplicate " << id;
+    EXPECT_TRUE(result.records.emplace(id, record).second)
+        << "duplicate " << id;
   }
   return result;
 }
@@ -86,22 +87,23 @@ void ExpectTextEqualsColmapConverter(const fs::path& model_dir,
   const fs::path theirs = dir / "colmap_txt";
   const fs::path ours = dir / "uw_txt";
   fs::create_directories(theirs);
-  const auto converted = RunProcess(
-      "colmap model_converter --input_path " + Quoted(model_dir) +
-          " --output_path " + Quoted(theirs) + " --output_type TXT",
-      true);
+  const auto converted =
+      RunProcess("colmap model_converter --input_path " + Quoted(model_dir) +
+                     " --output_path " + Quoted(theirs) + " --output_type TXT",
+                 true);
   ASSERT_EQ(converted.exit_code, 0) << converted.output;
-  const auto cli = RunProcess(kUwcolmap.string() + " model_converter" +
-                                  " --input_path " + Quoted(model_dir) +
-                                  " --output_path " + Quoted(ours) +
-                                  " --output_type TXT",
-                              true);
+  const auto cli =
+      RunProcess(kUwcolmap.string() + " model_converter" + " --input_path " +
+                     Quoted(model_dir) + " --output_path " + Quoted(ours) +
+                     " --output_type TXT",
+                 true);
   ASSERT_EQ(cli.exit_code, 0) << cli.output;
   for (const std::string& name : ModelFileNames(".txt")) {
     const bool two_lines = name == "images.txt";
     const TextRecords a =
         SplitRecords(ReadFileToString(theirs / name), two_lines);
-    const TextRecords b = SplitRecords(ReadFileToString(ours / name), two_lines);
+    const TextRecords b =
+        SplitRecords(ReadFileToString(ours / name), two_lines);
     EXPECT_EQ(a.header, b.header) << name;
     ASSERT_FALSE(a.records.empty()) << name;
     ASSERT_EQ(a.records.size(), b.records.size()) << name;
@@ -152,7 +154,8 @@ TEST(ColmapModel, StockColmapReadsWhatWeWrite) {
       << reference;
   const fs::path dir = FreshTestDir("uw_colmap_model_test");
   for (const ModelFormat format : {ModelFormat::kBinary, ModelFormat::kText}) {
-    const fs::path ours = dir / (format == ModelFormat::kBinary ? "bin" : "txt");
+    const fs::path ours =
+        dir / (format == ModelFormat::kBinary ? "bin" : "txt");
     WriteModel(original, ours, format);
     EXPECT_EQ(ColmapAnalyzerOutput(ours), reference);
   }
@@ -160,10 +163,10 @@ TEST(ColmapModel, StockColmapReadsWhatWeWrite) {
   // COLMAP's re-normalisation, everything else to the bit).
   const fs::path back = dir / "back";
   fs::create_directories(back);
-  const auto converted = RunProcess(
-      "colmap model_converter --input_path " + Quoted(dir / "txt") +
-          " --output_path " + Quoted(back) + " --output_type BIN",
-      true);
+  const auto converted =
+      RunProcess("colmap model_converter --input_path " + Quoted(dir / "txt") +
+                     " --output_path " + Quoted(back) + " --output_type BIN",
+                 true);
   ASSERT_EQ(converted.exit_code, 0) << converted.output;
   const Reconstruction round = ReadModel(back);
   ASSERT_EQ(round.Images().size(), original.Images().size());
@@ -173,7 +176,8 @@ TEST(ColmapModel, StockColmapReadsWhatWeWrite) {
     EXPECT_LT(other->cam_from_world.rotation.angularDistance(
                   image.cam_from_world.rotation),
               1e-14);
-    EXPECT_EQ(other->cam_from_world.translation, image.cam_from_world.translation);
+    EXPECT_EQ(other->cam_from_world.translation,
+              image.cam_from_world.translation);
     EXPECT_EQ(other->name, image.name);
     ASSERT_EQ(other->points2D.size(), image.points2D.size());
     for (size_t i = 0; i < image.points2D.size(); ++i) {
@@ -229,21 +233,20 @@ TEST(ColmapModel, StatisticsEqualColmapModelAnalyzer) {
   EXPECT_PRED2(near, errors.mean_point_error,
                colmap.at("Mean reprojection error"));
   EXPECT_EQ(errors.num_behind_camera, 0u);
-  std::printf("[ figures ] points %zu, observations %zu, mean error colmap "
-              "%.6f px, ours stored %.9f px, recomputed %.9f px, max "
-              "|recomputed - stored| %.3g px\n",
-              stats.num_points3D, stats.num_observations,
-              colmap.at("Mean reprojection error"),
-              stats.mean_reprojection_error, errors.mean_point_error,
-              errors.max_stored_error_difference);
+  std::printf(
+      "[ figures ] points %zu, observations %zu, mean error colmap "
+      "%.6f px, ours stored %.9f px, recomputed %.9f px, max "
+      "|recomputed - stored| %.3g px\n",
+      stats.num_points3D, stats.num_observations,
+      colmap.at("Mean reprojection error"), stats.mean_reprojection_error,
+      errors.mean_point_error, errors.max_stored_error_difference);
 }
 
 TEST(ColmapModel, UwcolmapModelAnalyzerPrintsColmapsLines) {
   const std::string reference = ColmapAnalyzerOutput(kSparseDir);
-  const auto ours =
-      RunProcess(kUwcolmap.string() + " model_analyzer --path " +
-                     Quoted(kSparseDir),
-                 false);
+  const auto ours = RunProcess(
+      kUwcolmap.string() + " model_analyzer --path " + Quoted(kSparseDir),
+      false);
   ASSERT_EQ(ours.exit_code, 0);
   EXPECT_EQ(ours.output.substr(0, reference.size()), reference);
   EXPECT_NE(ours.output.find("Recomputed mean reprojection error"),
@@ -355,8 +358,9 @@ TEST(ColmapModel, EveryCameraModelProjectsLikeColmap) {
   }
   for (size_t c = 0; c < cases.size(); ++c) {
     EXPECT_LT(max_difference[c], 1e-9) << CameraModelIdToName(cases[c].id);
-    std::printf("[ figures ] %-22s max |ours - colmap| mean point error %.3g px\n",
-                CameraModelIdToName(cases[c].id).c_str(), max_difference[c]);
+    std::printf(
+        "[ figures ] %-22s max |ours - colmap| mean point error %.3g px\n",
+        CameraModelIdToName(cases[c].id).c_str(), max_difference[c]);
   }
 }
 
@@ -364,11 +368,11 @@ TEST(ColmapModel, EveryCameraModelProjectsLikeColmap) {
 // non-zero exit, and nothing written.
 void ExpectCliRejects(const fs::path& model_dir, const std::string& expected) {
   const fs::path out = model_dir.parent_path() / "out";
-  const auto result = RunProcess(kUwcolmap.string() +
-                                     " model_converter --input_path " +
-                                     Quoted(model_dir) + " --output_path " +
-                                     Quoted(out) + " --output_type BIN",
-                                 true);
+  const auto result =
+      RunProcess(kUwcolmap.string() + " model_converter --input_path " +
+                     Quoted(model_dir) + " --output_path " + Quoted(out) +
+                     " --output_type BIN",
+                 true);
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find(expected), std::string::npos) << result.output;
   EXPECT_FALSE(fs::exists(out)) << "output written despite the error";
@@ -396,9 +400,7 @@ TEST(ColmapModel, CliRejectsMalformedTextWithFileAndLine) {
   const std::vector<Case> cases = {
       // One parameter too few for SIMPLE_RADIAL.
       {"cameras.txt",
-       [](std::string text) {
-         return text.substr(0, text.rfind(' ')) + "\n";
-       },
+       [](std::string text) { return text.substr(0, text.rfind(' ')) + "\n"; },
        "cameras.txt:4: camera 1: model SIMPLE_RADIAL expects 4 parameters"},
       // A letter inside the first image's rotation.
       {"images.txt",

@@ -1,6 +1,15 @@
 // COLMAP's camera models (ids, names, parameter order and maths of COLMAP
 // 3.8's src/base/camera_models.h), so that models written by COLMAP project
-// and unproject here exactly as they did inside COLMAP.
+// here as they did inside COLMAP: to rounding (~1e-13 px), except FOV with
+// |omega| < 0.01 where COLMAP's series is wrong (see FOVCameraModel).
+// Unprojection iterates further than COLMAP's (see UndistortNewton).
+//
+// ImgFromCam(u, v, w) projects the point (u, v, w); like COLMAP it assumes
+// w > 0 and callers check that. CamFromImg returns the ray scaled to w = 1 and
+// is meaningful only where the model is invertible: for the fisheyes, rays
+// less than 90 degrees off-axis; for polynomial distortion, radii before the
+// distortion folds back. Elsewhere it returns the last Newton iterate, as
+// COLMAP does.
 //
 // Pixel convention (COLMAP's): the upper-left image corner is (0, 0), the
 // centre of the upper-left pixel is (0.5, 0.5). The formulas contain no 0.5
@@ -21,7 +30,6 @@
 #include <limits>
 #include <string>
 #include <type_traits>
-#include <utility>
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -47,11 +55,16 @@ enum class CameraModelId : int {
 };
 
 inline constexpr std::array<CameraModelId, 11> kAllCameraModelIds = {
-    CameraModelId::kSimplePinhole,       CameraModelId::kPinhole,
-    CameraModelId::kSimpleRadial,        CameraModelId::kRadial,
-    CameraModelId::kOpenCV,              CameraModelId::kOpenCVFisheye,
-    CameraModelId::kFullOpenCV,          CameraModelId::kFOV,
-    CameraModelId::kSimpleRadialFisheye, CameraModelId::kRadialFisheye,
+    CameraModelId::kSimplePinhole,
+    CameraModelId::kPinhole,
+    CameraModelId::kSimpleRadial,
+    CameraModelId::kRadial,
+    CameraModelId::kOpenCV,
+    CameraModelId::kOpenCVFisheye,
+    CameraModelId::kFullOpenCV,
+    CameraModelId::kFOV,
+    CameraModelId::kSimpleRadialFisheye,
+    CameraModelId::kRadialFisheye,
     CameraModelId::kThinPrismFisheye,
 };
 
@@ -173,6 +186,7 @@ void UndistortNewton(const double* extra_params, double* u, double* v) {
 // follow from the implicit function theorem applied to x + D(x; p) = (u, v):
 // dx = J^-1 (d(u, v) - D_p dp). Iterating on Jets instead would leave the
 // derivatives a step behind the values when the stopping rule fires.
+// T is double or ceres::Jet<double, N>.
 template <typename Model, typename T>
 void IterativeUndistortion(const T* extra_params, T* u, T* v) {
   if constexpr (std::is_same_v<T, double>) {
@@ -196,16 +210,13 @@ void IterativeUndistortion(const T* extra_params, T* u, T* v) {
             kRelStepSize)
             .inverse();
 
-    // The residual at the (constant) solution has value ~0 and derivative
-    // D_p dp - d(u, v); its value is dropped so that the result's value is
-    // exactly the one of the double path.
+    // One Newton step in T from the constant solution: the residual's value
+    // is ~0, its derivative is D_p dp - d(u, v).
     T du;
     T dv;
     Model::Distortion(extra_params, T(u_value), T(v_value), &du, &dv);
-    T residual_u = T(u_value) + du - *u;
-    T residual_v = T(v_value) + dv - *v;
-    residual_u -= T(0);
-    residual_v -= T(ScalarPart(residual_v));
+    const T residual_u = T(u_value) + du - *u;
+    const T residual_v = T(v_value) + dv - *v;
     *u = T(u_value) - (jacobian_inverse(0, 0) * residual_u +
                        jacobian_inverse(0, 1) * residual_v);
     *v = T(v_value) - (jacobian_inverse(1, 0) * residual_u +
@@ -220,8 +231,6 @@ void IterativeUndistortion(const T* extra_params, T* u, T* v) {
 // angle mapping folded into their Distortion.
 template <typename Model>
 struct DistortedPlaneModel {
-  // A point with w <= 0 yields a mirrored projection, as in COLMAP 3.8:
-  // callers check that the point is in front of the camera.
   template <typename T>
   static void ImgFromCam(const T* params, T u, T v, T w, T* x, T* y) {
     const T normal_u = u / w;
@@ -465,10 +474,12 @@ struct FOVCameraModel {
 
   // atan(2 r tan(omega / 2)) / (r omega), written as a product of AtanOverX
   // and TanOverX so that r = 0 and omega = 0 need no special case. COLMAP 3.8
-  // switches to truncated Taylor series for omega^2 < 1e-4 or r^2 < 1e-4;
-  // its omega series is the one of the inverse factor (the O(omega^2) terms
-  // have the wrong sign), so for |omega| < 0.01 its projection and
-  // unprojection disagree by up to ~1e-4 relative. Here both are exact.
+  // switches to Taylor series for omega^2 < 1e-4 or r^2 < 1e-4 instead. Its
+  // omega series here is the one of UndistortionFactor (the O(omega^2) terms
+  // have the wrong sign), so for |omega| < 0.01 its projection is off by
+  // omega^2 (r^2 - 1/4) / 2 relative (4e-3 px at omega = 0.005, r = 1,
+  // f = 400) and disagrees with its own unprojection; its r series is off by
+  // up to ~1e-7 px. Both factors here are exact to rounding.
   template <typename T>
   static T DistortionFactor(const T& omega, const T& r2) {
     using camera_internal::AtanOverX;
@@ -501,11 +512,10 @@ struct FOVCameraModel {
   static void ImgFromCam(const T* params, T u, T v, T w, T* x, T* y) {
     const T normal_u = u / w;
     const T normal_v = v / w;
-    const T factor =
-        DistortionFactor(params[kExtraParamsIdxs[0]],
-                         normal_u * normal_u + normal_v * normal_v);
-    camera_internal::ImgFromNormal<FOVCameraModel>(
-        params, normal_u * factor, normal_v * factor, x, y);
+    const T factor = DistortionFactor(
+        params[kExtraParamsIdxs[0]], normal_u * normal_u + normal_v * normal_v);
+    camera_internal::ImgFromNormal<FOVCameraModel>(params, normal_u * factor,
+                                                   normal_v * factor, x, y);
   }
 
   template <typename T>
@@ -523,12 +533,11 @@ struct FOVCameraModel {
   }
 };
 
-// Parameters: f, cx, cy, k (OpenCV_FISHEYE with one focal length and k1
+// Parameters: f, cx, cy, k (OPENCV_FISHEYE with one focal length and k1
 // only).
 struct SimpleRadialFisheyeCameraModel
     : camera_internal::DistortedPlaneModel<SimpleRadialFisheyeCameraModel> {
-  static constexpr CameraModelId kModelId =
-      CameraModelId::kSimpleRadialFisheye;
+  static constexpr CameraModelId kModelId = CameraModelId::kSimpleRadialFisheye;
   static constexpr int kNumParams = 4;
   static constexpr const char* kModelName = "SIMPLE_RADIAL_FISHEYE";
   static constexpr const char* kParamsInfo = "f, cx, cy, k";
@@ -545,7 +554,7 @@ struct SimpleRadialFisheyeCameraModel
   }
 };
 
-// Parameters: f, cx, cy, k1, k2 (OpenCV_FISHEYE with one focal length and
+// Parameters: f, cx, cy, k1, k2 (OPENCV_FISHEYE with one focal length and
 // k1, k2 only).
 struct RadialFisheyeCameraModel
     : camera_internal::DistortedPlaneModel<RadialFisheyeCameraModel> {
@@ -612,8 +621,8 @@ struct ThinPrismFisheyeCameraModel {
     T du;
     T dv;
     Distortion(params + kExtraParamsIdxs[0], uu, vv, &du, &dv);
-    camera_internal::ImgFromNormal<ThinPrismFisheyeCameraModel>(
-        params, uu + du, vv + dv, x, y);
+    camera_internal::ImgFromNormal<ThinPrismFisheyeCameraModel>(params, uu + du,
+                                                                vv + dv, x, y);
   }
 
   template <typename T>

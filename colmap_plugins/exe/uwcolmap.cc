@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "colmap_plugins/exe/database_commands.h"
 #include "colmap_plugins/exe/model_commands.h"
 
 namespace {
@@ -17,6 +18,8 @@ struct Command {
 
 const std::vector<Command>& Commands() {
   static const std::vector<Command> commands = {
+      {"database_analyzer", uw::RunDatabaseAnalyzer,
+       "print the schema and contents of a COLMAP database"},
       {"model_analyzer", uw::RunModelAnalyzer,
        "print statistics of a model (as colmap model_analyzer)"},
       {"model_converter", uw::RunModelConverter,

@@ -23,8 +23,7 @@ bool HasAny(const fs::path& dir, const std::vector<std::string>& names) {
 }
 
 std::vector<std::string> FileNames(const std::string& extension) {
-  return {"cameras" + extension, "images" + extension,
-          "points3D" + extension};
+  return {"cameras" + extension, "images" + extension, "points3D" + extension};
 }
 
 std::vector<std::string> RigFileNames(const std::string& extension) {
@@ -35,8 +34,7 @@ ModelLayout DetectLayout(const fs::path& dir, const std::string& extension) {
   if (HasAll(dir, RigFileNames(extension))) return ModelLayout::kColmap4;
   if (HasAny(dir, RigFileNames(extension))) {
     throw ErrorAt(dir.string(), ": has only one of rigs", extension,
-                  " and frames", extension,
-                  "; a COLMAP 4.x model needs both");
+                  " and frames", extension, "; a COLMAP 4.x model needs both");
   }
   return ModelLayout::kColmap3;
 }
@@ -53,8 +51,9 @@ void ParseFile(const fs::path& path, Parser parser,
 
 ModelFiles DetectModelFiles(const fs::path& dir) {
   if (!fs::is_directory(dir)) {
-    throw ErrorAt(dir.string(), ": not a directory (expected a COLMAP model "
-                                "folder such as sparse/0)");
+    throw ErrorAt(dir.string(),
+                  ": not a directory (expected a COLMAP model "
+                  "folder such as sparse/0)");
   }
   if (HasAll(dir, FileNames(".bin"))) {
     return {ModelFormat::kBinary, DetectLayout(dir, ".bin")};
@@ -125,11 +124,12 @@ void WriteModel(const Reconstruction& reconstruction, const fs::path& dir,
   std::vector<PendingFile> files;
   for (const Part& part : parts) {
     const Writer writer = binary ? part.binary : part.text;
-    files.push_back({dir / (std::string(part.stem) + (binary ? ".bin" : ".txt")),
-                     [writer, &reconstruction](std::ostream& stream) {
-                       const std::string content = writer(reconstruction);
-                       stream.write(content.data(), content.size());
-                     }});
+    files.push_back(
+        {dir / (std::string(part.stem) + (binary ? ".bin" : ".txt")),
+         [writer, &reconstruction](std::ostream& stream) {
+           const std::string content = writer(reconstruction);
+           stream.write(content.data(), content.size());
+         }});
   }
   WriteFilesAtomically(files, binary);
 }

@@ -144,7 +144,8 @@ constexpr size_t kFrameMinBytes = 4 + 4 + 7 * 8 + 4;
 
 SensorId ReadSensorId(ByteReader* reader) {
   SensorId sensor_id;
-  sensor_id.type = static_cast<SensorType>(reader->Read<int32_t>("sensor type"));
+  sensor_id.type =
+      static_cast<SensorType>(reader->Read<int32_t>("sensor type"));
   sensor_id.id = reader->Read<uint32_t>("sensor id");
   return sensor_id;
 }
@@ -159,7 +160,8 @@ void WriteSensorId(const SensorId& sensor_id, ByteWriter* writer) {
 void ParseCamerasBinary(const std::string& data, const std::string& source,
                         Reconstruction* reconstruction) {
   ByteReader reader(data, source);
-  const uint64_t num_cameras = reader.ReadCount("camera count", kCameraMinBytes);
+  const uint64_t num_cameras =
+      reader.ReadCount("camera count", kCameraMinBytes);
   for (uint64_t i = 0; i < num_cameras; ++i) {
     Camera camera;
     camera.camera_id = reader.Read<uint32_t>("camera id");

@@ -17,9 +17,9 @@ namespace fs = std::filesystem;
 // A fresh, empty directory per test under the system temp dir.
 fs::path TestDir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::temp_directory_path() / "uw_model_io_test" /
-                       (std::string(info->test_suite_name()) + "." +
-                        info->name());
+  const fs::path dir =
+      fs::temp_directory_path() / "uw_model_io_test" /
+      (std::string(info->test_suite_name()) + "." + info->name());
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -31,9 +31,15 @@ fs::path TestDir() {
 Reconstruction MakeModel(std::mt19937* rng) {
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   Reconstruction model;
-  model.AddCamera({3, CameraModelId::kSimpleRadial, 640, 480,
+  model.AddCamera({3,
+                   CameraModelId::kSimpleRadial,
+                   640,
+                   480,
                    {500.1234567890123, 320.5, 240.25, -0.0123456789}});
-  model.AddCamera({1, CameraModelId::kOpenCV, 1024, 768,
+  model.AddCamera({1,
+                   CameraModelId::kOpenCV,
+                   1024,
+                   768,
                    {800.0, 801.0, 512.0, 384.0, 0.01, -0.002, 1e-4, -2e-5}});
   for (image_t image_id : {5u, 2u, 9u}) {
     Image image;
@@ -48,8 +54,8 @@ Reconstruction MakeModel(std::mt19937* rng) {
         Eigen::Vector3d(uniform(*rng), uniform(*rng), 3.0 + uniform(*rng));
     for (int k = 0; k < 4; ++k) {
       Point2D point2D;
-      point2D.xy = Eigen::Vector2d(300 + 100 * uniform(*rng),
-                                   200 + 100 * uniform(*rng));
+      point2D.xy =
+          Eigen::Vector2d(300 + 100 * uniform(*rng), 200 + 100 * uniform(*rng));
       image.points2D.push_back(point2D);
     }
     model.AddImage(image);
@@ -65,7 +71,9 @@ Reconstruction MakeModel(std::mt19937* rng) {
     point3D.error = 0.1 + 0.01 * uniform(*rng);
     point3D.track = track;
     for (const TrackElement& element : track) {
-      model.Images()[element.image_id == 5 ? 0 : element.image_id == 2 ? 1 : 2]
+      model.Images()[element.image_id == 5   ? 0
+                     : element.image_id == 2 ? 1
+                                             : 2]
           .points2D[element.point2D_idx]
           .point3D_id = point3D_id;
     }
@@ -91,7 +99,8 @@ Reconstruction MakeRigModel(std::mt19937* rng) {
   frame.frame_id = 1;
   frame.rig_id = 1;
   frame.rig_from_world = model.Images()[0].cam_from_world;
-  frame.data_ids = {{{SensorType::kCamera, 3}, 5}, {{SensorType::kCamera, 1}, 2}};
+  frame.data_ids = {{{SensorType::kCamera, 3}, 5},
+                    {{SensorType::kCamera, 1}, 2}};
   model.AddFrame(frame);
   return model;
 }
@@ -195,12 +204,12 @@ TEST(ModelIo, ReadsColmapDocumentationExamplesOfRigsAndFrames) {
   // Written back, the data lines are the documentation's lines.
   const std::string rigs_out = RigsText(model);
   EXPECT_NE(rigs_out.find("\n2 1 CAMERA 3\n"), std::string::npos);
-  EXPECT_NE(FramesText(model).find(
-                "\n2 2 0.99816472047267968 0.037605501383281774 "
-                "0.043101511724657163 -0.019881568259519072 "
-                "-5.1956060695789192 -0.20794508616745555 "
-                "0.14967533910764824 1 CAMERA 3 3\n"),
-            std::string::npos);
+  EXPECT_NE(
+      FramesText(model).find("\n2 2 0.99816472047267968 0.037605501383281774 "
+                             "0.043101511724657163 -0.019881568259519072 "
+                             "-5.1956060695789192 -0.20794508616745555 "
+                             "0.14967533910764824 1 CAMERA 3 3\n"),
+      std::string::npos);
 }
 
 // Cutting images.bin at every byte must give an error naming the file and a
@@ -214,8 +223,8 @@ TEST(ModelIo, TruncatedBinaryFilesAreRejectedAtEveryLength) {
       {"points3D.bin", Points3DBinary(model)},
       {"rigs.bin", RigsBinary(model)},
       {"frames.bin", FramesBinary(model)}};
-  using Parser = void (*)(const std::string&, const std::string&,
-                          Reconstruction*);
+  using Parser =
+      void (*)(const std::string&, const std::string&, Reconstruction*);
   const std::vector<Parser> parsers = {ParseCamerasBinary, ParseImagesBinary,
                                        ParsePoints3DBinary, ParseRigsBinary,
                                        ParseFramesBinary};
@@ -229,8 +238,7 @@ TEST(ModelIo, TruncatedBinaryFilesAreRejectedAtEveryLength) {
                       << " bytes was accepted";
       } catch (const Error& error) {
         const std::string message = error.what();
-        EXPECT_EQ(message.rfind(std::string(files[f].first) + ": byte ", 0),
-                  0u)
+        EXPECT_EQ(message.rfind(std::string(files[f].first) + ": byte ", 0), 0u)
             << message;
       }
     }
@@ -265,9 +273,10 @@ std::string ErrorOf(const std::function<void()>& body) {
 TEST(ModelIo, WrongParameterCountNamesLineModelAndCounts) {
   Reconstruction model;
   const std::string message = ErrorOf([&] {
-    ParseCamerasText("# comment\n1 PINHOLE 640 480 500 500 320 240\n"
-                     "2 SIMPLE_RADIAL 640 480 500 320 240\n",
-                     "sparse/cameras.txt", &model);
+    ParseCamerasText(
+        "# comment\n1 PINHOLE 640 480 500 500 320 240\n"
+        "2 SIMPLE_RADIAL 640 480 500 320 240\n",
+        "sparse/cameras.txt", &model);
   });
   EXPECT_NE(message.find("sparse/cameras.txt:3:"), std::string::npos)
       << message;

@@ -28,7 +28,6 @@ class Failure {
   std::ostringstream message_;
 };
 
-
 [[noreturn]] void Throw(const Failure& failure) { throw Error(failure); }
 
 // Splits a text file into data lines (comments and blank lines skipped,
@@ -81,8 +80,8 @@ class LineReader {
     const auto [end, ec] =
         std::from_chars(token.data(), token.data() + token.size(), value);
     if (ec != std::errc() || end != token.data() + token.size()) {
-      Throw(Fail() << "expected " << what << " (integer) as field "
-                   << index + 1 << ", got '" << token << "'");
+      Throw(Fail() << "expected " << what << " (integer) as field " << index + 1
+                   << ", got '" << token << "'");
     }
     return value;
   }
@@ -93,8 +92,8 @@ class LineReader {
     const auto [end, ec] =
         std::from_chars(token.data(), token.data() + token.size(), value);
     if (ec != std::errc() || end != token.data() + token.size()) {
-      Throw(Fail() << "expected " << what << " (number) as field "
-                   << index + 1 << ", got '" << token << "'");
+      Throw(Fail() << "expected " << what << " (number) as field " << index + 1
+                   << ", got '" << token << "'");
     }
     if (!std::isfinite(value)) {
       Throw(Fail() << what << " as field " << index + 1 << " is not finite ('"
@@ -109,7 +108,8 @@ class LineReader {
     pose.rotation.x() = Double(index + 1, what);
     pose.rotation.y() = Double(index + 2, what);
     pose.rotation.z() = Double(index + 3, what);
-    for (int k = 0; k < 3; ++k) pose.translation(k) = Double(index + 4 + k, what);
+    for (int k = 0; k < 3; ++k)
+      pose.translation(k) = Double(index + 4 + k, what);
     return pose;
   }
 
@@ -125,8 +125,8 @@ class LineReader {
 
   void ExpectTokens(size_t count, const char* layout) const {
     if (tokens_.size() != count) {
-      Throw(Fail() << "expected " << count << " fields (" << layout
-                   << "), got " << tokens_.size());
+      Throw(Fail() << "expected " << count << " fields (" << layout << "), got "
+                   << tokens_.size());
     }
   }
 
@@ -223,8 +223,9 @@ void ParseCamerasText(const std::string& data, const std::string& source,
     if (num_params != static_cast<size_t>(expected)) {
       Throw(reader.Fail() << "camera " << camera.camera_id << ": model "
                           << model_name << " expects " << expected
-                          << " parameters (" << CameraModelParamsInfo(camera.model_id)
-                          << "), got " << num_params);
+                          << " parameters ("
+                          << CameraModelParamsInfo(camera.model_id) << "), got "
+                          << num_params);
     }
     for (size_t k = 0; k < num_params; ++k) {
       camera.params.push_back(reader.Double(4 + k, "PARAMS"));
@@ -309,8 +310,8 @@ void ParsePoints3DText(const std::string& data, const std::string& source,
     for (int k = 0; k < 3; ++k) {
       const int channel = reader.Integer<int>(4 + k, "RGB");
       if (channel < 0 || channel > 255) {
-        Throw(reader.Fail() << "colour channel " << channel
-                            << " is outside 0..255");
+        Throw(reader.Fail()
+              << "colour channel " << channel << " is outside 0..255");
       }
       point3D.color(k) = static_cast<uint8_t>(channel);
     }
@@ -338,8 +339,9 @@ void ParseRigsText(const std::string& data, const std::string& source,
     const uint32_t num_sensors = reader.Integer<uint32_t>(1, "NUM_SENSORS");
     size_t field = 2;
     if (num_sensors > 0) {
-      rig.ref_sensor = SensorId{reader.Sensor(field),
-                                reader.Integer<uint32_t>(field + 1, "REF_SENSOR_ID")};
+      rig.ref_sensor =
+          SensorId{reader.Sensor(field),
+                   reader.Integer<uint32_t>(field + 1, "REF_SENSOR_ID")};
       field += 2;
     }
     for (uint32_t k = 1; k < num_sensors; ++k) {
@@ -398,8 +400,8 @@ std::string CamerasText(const Reconstruction& reconstruction) {
        << "# Number of cameras: " << reconstruction.Cameras().size() << "\n";
   for (const Camera& camera : reconstruction.Cameras()) {
     TextStream line;
-    line << camera.camera_id << " " << camera.ModelName() << " "
-         << camera.width << " " << camera.height << " ";
+    line << camera.camera_id << " " << camera.ModelName() << " " << camera.width
+         << " " << camera.height << " ";
     for (const double param : camera.params) line << param << " ";
     file << DropLastChar(line.str()) << "\n";
   }
@@ -409,9 +411,9 @@ std::string CamerasText(const Reconstruction& reconstruction) {
 std::string ImagesText(const Reconstruction& reconstruction) {
   const size_t num_images = reconstruction.Images().size();
   const double mean_observations =
-      num_images == 0 ? 0.0
-                      : NumObservations(reconstruction) /
-                            static_cast<double>(num_images);
+      num_images == 0
+          ? 0.0
+          : NumObservations(reconstruction) / static_cast<double>(num_images);
   TextStream file;
   file << "# Image list with two lines of data per image:\n"
        << "#   IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, CAMERA_ID, NAME\n"
@@ -445,9 +447,9 @@ std::string ImagesText(const Reconstruction& reconstruction) {
 std::string Points3DText(const Reconstruction& reconstruction) {
   const size_t num_points = reconstruction.Points3D().size();
   const double mean_track_length =
-      num_points == 0 ? 0.0
-                      : NumObservations(reconstruction) /
-                            static_cast<double>(num_points);
+      num_points == 0
+          ? 0.0
+          : NumObservations(reconstruction) / static_cast<double>(num_points);
   TextStream file;
   file << "# 3D point list with one line of data per point:\n"
        << "#   POINT3D_ID, X, Y, Z, R, G, B, ERROR, TRACK[] as (IMAGE_ID, "
@@ -455,10 +457,9 @@ std::string Points3DText(const Reconstruction& reconstruction) {
        << "# Number of points: " << num_points
        << ", mean track length: " << mean_track_length << "\n";
   for (const Point3D& point3D : reconstruction.Points3D()) {
-    file << point3D.point3D_id << " " << point3D.xyz(0) << " "
-         << point3D.xyz(1) << " " << point3D.xyz(2) << " "
-         << static_cast<int>(point3D.color(0)) << " "
-         << static_cast<int>(point3D.color(1)) << " "
+    file << point3D.point3D_id << " " << point3D.xyz(0) << " " << point3D.xyz(1)
+         << " " << point3D.xyz(2) << " " << static_cast<int>(point3D.color(0))
+         << " " << static_cast<int>(point3D.color(1)) << " "
          << static_cast<int>(point3D.color(2)) << " " << point3D.error << " ";
     TextStream track;
     for (const TrackElement& element : point3D.track) {

@@ -73,10 +73,9 @@ ReprojectionErrors RecomputeReprojectionErrors(
         ++errors.num_behind_camera;
         continue;
       }
-      const double error =
-          (camera.ImgFromCam(point_in_cam) -
-           image.points2D[element.point2D_idx].xy)
-              .norm();
+      const double error = (camera.ImgFromCam(point_in_cam) -
+                            image.points2D[element.point2D_idx].xy)
+                               .norm();
       track_error_sum += error;
       observation_error_sum += error;
       ++track_count;

@@ -31,8 +31,8 @@ void WriteFilesAtomically(const std::vector<PendingFile>& files,
       }
       const std::filesystem::path tmp = TemporaryPathFor(file.path);
       written.push_back(tmp);
-      std::ofstream stream(tmp, binary ? std::ios::binary | std::ios::trunc
-                                       : std::ios::trunc);
+      std::ofstream stream(
+          tmp, binary ? std::ios::binary | std::ios::trunc : std::ios::trunc);
       if (!stream) {
         throw ErrorAt(file.path.string(), ": cannot open for writing");
       }

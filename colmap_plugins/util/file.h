@@ -21,8 +21,7 @@ struct PendingFile {
 // stream fails, all temporaries are removed, no final file is touched and
 // the error propagates. Otherwise the temporaries are renamed into place.
 // Parent directories are created as needed.
-void WriteFilesAtomically(const std::vector<PendingFile>& files,
-                          bool binary);
+void WriteFilesAtomically(const std::vector<PendingFile>& files, bool binary);
 
 // Reads a whole file; throws uw::Error naming the path if it cannot.
 std::string ReadFileToString(const std::filesystem::path& path);

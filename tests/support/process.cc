@@ -11,8 +11,7 @@
 namespace uw::testing {
 
 ProcessResult RunProcess(const std::string& command, bool merge_stderr) {
-  const std::string full =
-      command + (merge_stderr ? " 2>&1" : " 2>/dev/null");
+  const std::string full = command + (merge_stderr ? " 2>&1" : " 2>/dev/null");
   FILE* pipe = ::popen(full.c_str(), "r");
   if (pipe == nullptr) throw std::runtime_error("popen failed: " + command);
   ProcessResult result;
