@@ -3,9 +3,10 @@
 #
 # Today (foundation): sets up and builds (scripts/setup.sh), renders the test
 # scene with known camera poses, reconstructs it with stock colmap 3.8 on the
-# CPU, and shows what uwmetric reads from colmap's files: the model_analyzer
-# figures, a lossless BIN -> BIN round trip, TXT output, and the model's
-# camera positions against the truth after colmap's similarity alignment.
+# CPU, and shows what uwmetric reads from colmap's files: the database's
+# schema and contents, the model_analyzer figures, a lossless BIN -> BIN
+# round trip, TXT output, and the model's camera positions against the truth
+# after colmap's similarity alignment.
 #
 #   bash scripts/demo.sh [OUTPUT_DIR]      # default: out/demo
 set -euo pipefail
@@ -22,7 +23,9 @@ echo "== 1. Render the test scene and reconstruct it with stock colmap"
 bash "$root/scripts/reconstruct_test_scene.sh" "$bin/render_test_scene" "$out"
 
 echo
-echo "== 2. What uwmetric reads from colmap's model (uwcolmap model_analyzer)"
+echo "== 2. What uwmetric reads from colmap's database and model"
+"$bin/uwcolmap" database_analyzer --database_path "$out/database.db"
+echo
 "$bin/uwcolmap" model_analyzer --path "$out/sparse/0"
 
 echo
