@@ -47,9 +47,13 @@ echo "text model written to $out/uw_txt"
 echo
 echo "== 4. Camera positions vs truth (colmap model_aligner, similarity)"
 mkdir -p "$out/aligned"
-colmap model_aligner --input_path "$out/sparse/0" --output_path "$out/aligned" \
+if ! colmap model_aligner --input_path "$out/sparse/0" --output_path "$out/aligned" \
   --ref_images_path "$out/scene/truth/ref_images.txt" --ref_is_gps 0 \
-  --robust_alignment_max_error 0.05 2>&1 | grep -i "alignment error" || true
+  --robust_alignment_max_error 0.05 > "$out/logs/model_aligner.log" 2>&1; then
+  cat "$out/logs/model_aligner.log" >&2
+  exit 1
+fi
+grep -i "alignment error" "$out/logs/model_aligner.log"
 
 echo
 echo "Demo finished in $((SECONDS - start)) s; outputs in $out"

@@ -12,8 +12,18 @@ set -euo pipefail
 render=$1
 out=$2
 
+# Only a folder this script made earlier (it holds the marker) is replaced;
+# anything else that is not empty is refused, so a mistyped path never
+# deletes a user's data.
+marker=".uwmetric-test-scene"
+if [[ -e "$out" && -n "$(ls -A "$out" 2>/dev/null)" && ! -f "$out/$marker" ]]; then
+  echo "reconstruct_test_scene: $out exists and was not made by this script;" \
+    "choose a new or empty folder" >&2
+  exit 1
+fi
 rm -rf "$out"
 mkdir -p "$out/logs" "$out/sparse"
+touch "$out/$marker"
 run() {  # run NAME COMMAND...: time a step, keep its log, show it on failure
   local name=$1
   shift

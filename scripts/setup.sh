@@ -20,7 +20,7 @@ packages=(
   colmap
   # libraries (DESIGN.md §3)
   libeigen3-dev libceres-dev libsqlite3-dev sqlite3 libcli11-dev
-  libopencv-dev libgtest-dev
+  libopencv-dev libgtest-dev libembree-dev libtbb-dev nlohmann-json3-dev
 )
 
 missing=()
@@ -32,12 +32,18 @@ for package in "${packages[@]}"; do
 done
 
 if ((${#missing[@]} > 0)); then
-  sudo=()
-  if [[ $(id -u) -ne 0 ]]; then sudo=(sudo); fi
+  as_root=(env DEBIAN_FRONTEND=noninteractive)
+  if [[ $(id -u) -ne 0 ]]; then
+    if ! command -v sudo > /dev/null; then
+      echo "[setup] missing packages: ${missing[*]}" >&2
+      echo "[setup] run this script as root (or install sudo) to install them" >&2
+      exit 1
+    fi
+    as_root=(sudo env DEBIAN_FRONTEND=noninteractive)
+  fi
   echo "[setup] installing ${#missing[@]} Debian packages: ${missing[*]}"
-  "${sudo[@]}" apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq \
-    --no-install-recommends "${missing[@]}"
+  "${as_root[@]}" apt-get update -qq
+  "${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 else
   echo "[setup] all ${#packages[@]} Debian packages already installed"
 fi

@@ -154,7 +154,8 @@ TEST(ColmapDatabase, DatabaseAnalyzerCountsWhatTheSqliteShellCounts) {
       "Images with keypoints: " +
       Shell(db, "SELECT count(*) FROM keypoints WHERE rows > 0") + "\n" +
       "Keypoints: " + Shell(db, "SELECT sum(rows) FROM keypoints") + "\n" +
-      "Matched pairs: " + Shell(db, "SELECT count(*) FROM matches") + "\n" +
+      "Matched pairs: " +
+      Shell(db, "SELECT count(*) FROM matches WHERE rows > 0") + "\n" +
       "Verified pairs: " +
       Shell(db, "SELECT count(*) FROM two_view_geometries WHERE rows > 0") +
       "\n" + "Inlier matches: " +

@@ -1,6 +1,6 @@
 // Our reading and writing of COLMAP sparse models against stock colmap 3.8,
 // on a model that stock colmap reconstructed from the rendered test scene
-// (fixture colmap_scene, built by colmap_scene_setup.sh).
+// (fixture colmap_scene, built by scripts/reconstruct_test_scene.sh).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -376,6 +376,21 @@ void ExpectCliRejects(const fs::path& model_dir, const std::string& expected) {
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.output.find(expected), std::string::npos) << result.output;
   EXPECT_FALSE(fs::exists(out)) << "output written despite the error";
+}
+
+TEST(ColmapModel, CliRefusesToConvertAModelInPlace) {
+  const fs::path dir = FreshTestDir("uw_colmap_model_test") / "model";
+  WriteModel(ReadModel(kSparseDir), dir, ModelFormat::kText);
+  const std::string before = ReadFileToString(dir / "images.txt");
+  const auto result = RunProcess(kUwcolmap.string() +
+                                     " model_converter --input_path " +
+                                     Quoted(dir) + " --output_path " +
+                                     Quoted(dir / ".") + " --output_type TXT",
+                                 true);
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.output.find("is the input folder"), std::string::npos)
+      << result.output;
+  EXPECT_TRUE(ReadFileToString(dir / "images.txt") == before);
 }
 
 TEST(ColmapModel, CliRejectsTruncatedBinaryWithFileAndOffset) {

@@ -477,7 +477,7 @@ struct FOVCameraModel {
   // switches to Taylor series for omega^2 < 1e-4 or r^2 < 1e-4 instead. Its
   // omega series here is the one of UndistortionFactor (the O(omega^2) terms
   // have the wrong sign), so for |omega| < 0.01 its projection is off by
-  // omega^2 (r^2 - 1/4) / 2 relative (4e-3 px at omega = 0.005, r = 1,
+  // (2/3) omega^2 (r^2 - 1/4) relative (5e-3 px at omega = 0.005, r = 1,
   // f = 400) and disagrees with its own unprojection; its r series is off by
   // up to ~1e-7 px. Both factors here are exact to rounding.
   template <typename T>

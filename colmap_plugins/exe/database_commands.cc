@@ -29,6 +29,10 @@ int RunDatabaseAnalyzer(int argc, char** argv) {
       num_keypoints += rows;
       num_images_with_keypoints += rows > 0 ? 1 : 0;
     }
+    size_t num_matched_pairs = 0;
+    for (const auto& [pair_id, matches] : database.ReadAllMatches()) {
+      num_matched_pairs += matches.rows() > 0 ? 1 : 0;
+    }
     size_t num_verified_pairs = 0;
     size_t num_inlier_matches = 0;
     for (const auto& [pair_id, geometry] : database.ReadTwoViewGeometries()) {
@@ -54,7 +58,7 @@ int RunDatabaseAnalyzer(int argc, char** argv) {
         database.HasRigsAndFrames() ? ", with rigs and frames" : "",
         database.ReadAllCameras().size(), images.size(),
         num_images_with_keypoints, num_keypoints,
-        database.ReadAllMatches().size(), num_verified_pairs,
+        num_matched_pairs, num_verified_pairs,
         num_inlier_matches, priors.size(), num_priors_with_covariance);
   });
 }

@@ -48,6 +48,13 @@ int RunModelConverter(int argc, char** argv) {
                     ": uwcolmap writes BIN or TXT; use `colmap "
                     "model_converter` for NVM, Bundler, VRML, PLY, R3D, CAM");
     }
+    // Converting in place would rewrite the input (COLMAP-normalised
+    // quaternions, other format's files left behind); never touch inputs.
+    std::error_code ignored;
+    if (std::filesystem::equivalent(input_path, output_path, ignored)) {
+      throw ErrorAt("--output_path ", output_path,
+                    " is the input folder; write to another folder");
+    }
     const Reconstruction reconstruction = ReadModel(input_path);
     WriteModel(reconstruction, output_path, format);
   });
@@ -65,7 +72,10 @@ int RunModelAnalyzer(int argc, char** argv) {
   app.add_option("--path", path, "Model folder (.bin or .txt)")->required();
   return RunCommand(app, argc, argv, [&] {
     const ModelFiles files = DetectModelFiles(path);
-    const Reconstruction reconstruction = ReadModel(path);
+    const Reconstruction reconstruction =
+        files.format == ModelFormat::kBinary
+            ? ReadModelBinary(path, files.layout)
+            : ReadModelText(path, files.layout);
     std::cout << FormatModelAnalyzerReport(ComputeModelStats(reconstruction));
     const ReprojectionErrors errors =
         RecomputeReprojectionErrors(reconstruction);

@@ -1,5 +1,7 @@
 #include "colmap_plugins/scene/database.h"
 
+#include <unistd.h>
+
 #include <sqlite3.h>
 
 #include <algorithm>
@@ -14,6 +16,22 @@
 
 namespace uw {
 namespace {
+
+// An SQLite URI path: characters with a meaning in URIs are escaped.
+std::string PercentEncodePath(const std::filesystem::path& path) {
+  static const char kHex[] = "0123456789ABCDEF";
+  std::string encoded;
+  for (const unsigned char c : path.string()) {
+    if (c == '%' || c == '?' || c == '#' || c < 0x20 || c >= 0x7f) {
+      encoded += '%';
+      encoded += kHex[c >> 4];
+      encoded += kHex[c & 15];
+    } else {
+      encoded += static_cast<char>(c);
+    }
+  }
+  return encoded;
+}
 
 namespace fs = std::filesystem;
 
@@ -418,10 +436,21 @@ Database Database::Open(const fs::path& path, Mode mode) {
   }
   // Without SQLITE_OPEN_CREATE a file deleted since the check above is an
   // error, not a new empty database.
-  const int flags =
+  int flags =
       mode == Mode::kReadOnly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE;
+  std::string name = path.string();
+  // COLMAP keeps its database in WAL mode, where every reader must create a
+  // -shm file beside it; in a folder we cannot write (a read-only archive)
+  // that fails, so such a database is opened as immutable instead.
+  const std::filesystem::path folder =
+      path.has_parent_path() ? path.parent_path() : ".";
+  if (mode == Mode::kReadOnly && ::access(folder.c_str(), W_OK) != 0) {
+    name = "file:" + PercentEncodePath(std::filesystem::absolute(path)) +
+           "?immutable=1";
+    flags |= SQLITE_OPEN_URI;
+  }
   sqlite3* raw = nullptr;
-  const int rc = sqlite3_open_v2(path.c_str(), &raw, flags, nullptr);
+  const int rc = sqlite3_open_v2(name.c_str(), &raw, flags, nullptr);
   // SQLite hands out a handle even on failure; it must be closed too.
   std::unique_ptr<sqlite3, Closer> db(raw);
   if (rc != SQLITE_OK) {

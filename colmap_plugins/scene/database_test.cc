@@ -435,6 +435,19 @@ std::string HexOf(const Matrix& matrix) {
   return Hex(matrix.data(), matrix.size() * sizeof(typename Matrix::Scalar));
 }
 
+// The matrix's elements in COLMAP's blob order (row by row), whatever the
+// matrix's own storage order, so a transposed read shows up.
+template <typename Matrix>
+std::string RowMajorHex(const Matrix& matrix) {
+  std::string hex;
+  for (Eigen::Index i = 0; i < matrix.rows(); ++i) {
+    for (Eigen::Index j = 0; j < matrix.cols(); ++j) {
+      hex += Hex(&matrix(i, j), sizeof(typename Matrix::Scalar));
+    }
+  }
+  return hex;
+}
+
 template <typename Matrix>
 bool BitIdentical(const Matrix& a, const Matrix& b) {
   return a.size() == b.size() &&
@@ -598,12 +611,12 @@ TEST(ColmapDatabase38, ReadsWhatStockColmapWrote) {
   // Stock colmap leaves the prior columns NULL for images without EXIF GPS.
   EXPECT_TRUE(db.ReadAllPosePriors().empty());
 
-  // Keypoints and descriptors: shape, size and first/last element bytes.
+  // Keypoints and descriptors: shape, size, and every byte in row order.
   std::map<uint32_t, int64_t> num_keypoints;
   for (const auto& row : Sqlite3Rows(
            db_path,
            "SELECT image_id, rows, cols, length(data), hex(substr(data, 1, "
-           "4)), hex(substr(data, -4, 4)) FROM keypoints;")) {
+           "4)), hex(substr(data, -4, 4)), hex(data) FROM keypoints;")) {
     const uint32_t image_id = std::stoul(row[0]);
     const FeatureKeypointsBlob keypoints = db.ReadKeypoints(image_id);
     ASSERT_EQ(keypoints.rows(), std::stoll(row[1])) << image_id;
@@ -613,13 +626,14 @@ TEST(ColmapDatabase38, ReadsWhatStockColmapWrote) {
     EXPECT_EQ(keypoints.size() * 4, std::stoll(row[3]));
     EXPECT_EQ(Hex(&keypoints(0, 0), 4), row[4]);
     EXPECT_EQ(Hex(&keypoints(keypoints.rows() - 1, 5), 4), row[5]);
+    EXPECT_TRUE(RowMajorHex(keypoints) == row[6]) << image_id;
     num_keypoints[image_id] = keypoints.rows();
   }
   EXPECT_EQ(num_keypoints.size(), size_t{kNumImages});
   for (const auto& row :
        Sqlite3Rows(db_path,
                    "SELECT image_id, rows, cols, hex(substr(data, 1, 1)), "
-                   "hex(substr(data, -1, 1)) FROM descriptors;")) {
+                   "hex(substr(data, -1, 1)), hex(data) FROM descriptors;")) {
     const DatabaseDescriptors descriptors =
         db.ReadDescriptors(std::stoul(row[0]));
     EXPECT_EQ(descriptors.type, FeatureExtractorType::kSift);
@@ -629,6 +643,7 @@ TEST(ColmapDatabase38, ReadsWhatStockColmapWrote) {
     EXPECT_EQ(Hex(&descriptors.data(0, 0), 1), row[3]);
     EXPECT_EQ(Hex(&descriptors.data(descriptors.data.rows() - 1, 127), 1),
               row[4]);
+    EXPECT_TRUE(RowMajorHex(descriptors.data) == row[5]) << row[0];
   }
 
   // Matches: every pair of six images, indices within the keypoints.

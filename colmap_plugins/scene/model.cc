@@ -156,10 +156,52 @@ void Reconstruction::Check(const std::string& source) const {
       }
     }
   }
+  if (layout == ModelLayout::kColmap4) CheckRigsAndFrames(source);
+}
+
+// COLMAP 4.x reads an image's pose through its frame, so every image must be
+// exposed in exactly one frame, and every sensor a rig or frame names must
+// exist (COLMAP fails on a missing one).
+void Reconstruction::CheckRigsAndFrames(const std::string& source) const {
+  for (const Rig& rig : rigs_) {
+    std::vector<SensorId> sensors;
+    if (rig.ref_sensor) sensors.push_back(*rig.ref_sensor);
+    for (const RigSensor& sensor : rig.non_ref_sensors) {
+      sensors.push_back(sensor.sensor_id);
+    }
+    for (const SensorId& sensor : sensors) {
+      if (sensor.type == SensorType::kCamera &&
+          FindCamera(sensor.id) == nullptr) {
+        throw ErrorAt(source, ": rig ", rig.rig_id, " names camera ",
+                      sensor.id, " which is not in the model");
+      }
+    }
+  }
+  std::unordered_map<image_t, frame_t> frame_of_image;
   for (const Frame& frame : frames_) {
     if (rig_index_.count(frame.rig_id) == 0) {
       throw ErrorAt(source, ": frame ", frame.frame_id, " refers to rig ",
                     frame.rig_id, " which is not in the model");
+    }
+    for (const DataId& data_id : frame.data_ids) {
+      if (data_id.sensor_id.type != SensorType::kCamera) continue;
+      const Image* image = FindImage(static_cast<image_t>(data_id.id));
+      if (image == nullptr || image->camera_id != data_id.sensor_id.id) {
+        throw ErrorAt(source, ": frame ", frame.frame_id, " names image ",
+                      data_id.id, " of camera ", data_id.sensor_id.id,
+                      ", which is not in the model");
+      }
+      if (!frame_of_image.emplace(image->image_id, frame.frame_id).second) {
+        throw ErrorAt(source, ": image ", image->image_id, " (", image->name,
+                      ") is in frames ", frame_of_image.at(image->image_id),
+                      " and ", frame.frame_id);
+      }
+    }
+  }
+  for (const Image& image : images_) {
+    if (frame_of_image.count(image.image_id) == 0) {
+      throw ErrorAt(source, ": image ", image.image_id, " (", image.name,
+                    ") is in no frame; a COLMAP 4.x model needs one");
     }
   }
 }

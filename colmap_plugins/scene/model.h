@@ -170,6 +170,8 @@ class Reconstruction {
   void Check(const std::string& source) const;
 
  private:
+  void CheckRigsAndFrames(const std::string& source) const;
+
   std::vector<Camera> cameras_;
   std::vector<Image> images_;
   std::vector<Point3D> points3D_;

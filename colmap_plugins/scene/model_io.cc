@@ -1,5 +1,7 @@
 #include "colmap_plugins/scene/model_io.h"
 
+#include <algorithm>
+
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
 
@@ -121,6 +123,25 @@ void WriteModel(const Reconstruction& reconstruction, const fs::path& dir,
     parts.push_back({"frames", FramesBinary, FramesText});
   }
   const bool binary = format == ModelFormat::kBinary;
+  // Files of another model left in the folder (the other format, or rigs
+  // and frames of a 4.x model when writing 3.x) would be read together with
+  // ours, so refuse rather than produce a mixed model.
+  for (const std::string extension : {".bin", ".txt"}) {
+    for (const char* stem :
+         {"cameras", "images", "points3D", "rigs", "frames"}) {
+      const bool ours =
+          extension == (binary ? ".bin" : ".txt") &&
+          std::any_of(parts.begin(), parts.end(), [&](const Part& part) {
+            return std::string(part.stem) == stem;
+          });
+      const fs::path path = dir / (std::string(stem) + extension);
+      if (!ours && fs::exists(path)) {
+        throw ErrorAt(path.string(),
+                      ": belongs to another model; write into an empty "
+                      "folder or remove it first");
+      }
+    }
+  }
   std::vector<PendingFile> files;
   for (const Part& part : parts) {
     const Writer writer = binary ? part.binary : part.text;

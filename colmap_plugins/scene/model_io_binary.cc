@@ -80,6 +80,12 @@ class ByteReader {
     return pose;
   }
 
+  // An error about the record just read (e.g. a duplicate id), at the
+  // position after it.
+  Error ErrorHere(const std::string& problem) const {
+    return ErrorAt(source_, ": byte ", pos_, ": ", problem);
+  }
+
   void ExpectEnd() const {
     if (pos_ != data_.size()) {
       throw ErrorAt(source_, ": byte ", pos_, ": ", data_.size() - pos_,
@@ -144,10 +150,26 @@ constexpr size_t kFrameMinBytes = 4 + 4 + 7 * 8 + 4;
 
 SensorId ReadSensorId(ByteReader* reader) {
   SensorId sensor_id;
-  sensor_id.type =
-      static_cast<SensorType>(reader->Read<int32_t>("sensor type"));
+  const int32_t type = reader->Read<int32_t>("sensor type");
+  if (type != static_cast<int32_t>(SensorType::kCamera) &&
+      type != static_cast<int32_t>(SensorType::kImu)) {
+    throw reader->ErrorHere("unknown sensor type " + std::to_string(type) +
+                            " (0 = CAMERA, 1 = IMU)");
+  }
+  sensor_id.type = static_cast<SensorType>(type);
   sensor_id.id = reader->Read<uint32_t>("sensor id");
   return sensor_id;
+}
+
+// Adds a record, turning an id clash into an error at the file position.
+template <typename Record>
+void AddRecord(void (Reconstruction::*add)(Record), Record record,
+               const ByteReader& reader, Reconstruction* reconstruction) {
+  try {
+    (reconstruction->*add)(std::move(record));
+  } catch (const Error& error) {
+    throw reader.ErrorHere(error.what());
+  }
 }
 
 void WriteSensorId(const SensorId& sensor_id, ByteWriter* writer) {
@@ -177,7 +199,8 @@ void ParseCamerasBinary(const std::string& data, const std::string& source,
     camera.height = reader.Read<uint64_t>("height");
     camera.params.resize(num_params);
     for (double& param : camera.params) param = reader.ReadFinite("params");
-    reconstruction->AddCamera(std::move(camera));
+    AddRecord(&Reconstruction::AddCamera, std::move(camera), reader,
+              reconstruction);
   }
   reader.ExpectEnd();
 }
@@ -201,7 +224,8 @@ void ParseImagesBinary(const std::string& data, const std::string& source,
       point2D.xy.y() = reader.ReadFinite("points2D");
       point2D.point3D_id = reader.Read<uint64_t>("points2D");
     }
-    reconstruction->AddImage(std::move(image));
+    AddRecord(&Reconstruction::AddImage, std::move(image), reader,
+              reconstruction);
   }
   reader.ExpectEnd();
 }
@@ -225,7 +249,8 @@ void ParsePoints3DBinary(const std::string& data, const std::string& source,
       element.image_id = reader.Read<uint32_t>("track");
       element.point2D_idx = reader.Read<uint32_t>("track");
     }
-    reconstruction->AddPoint3D(std::move(point3D));
+    AddRecord(&Reconstruction::AddPoint3D, std::move(point3D), reader,
+              reconstruction);
   }
   reader.ExpectEnd();
 }
@@ -248,7 +273,8 @@ void ParseRigsBinary(const std::string& data, const std::string& source,
       }
       rig.non_ref_sensors.push_back(sensor);
     }
-    reconstruction->AddRig(std::move(rig));
+    AddRecord(&Reconstruction::AddRig, std::move(rig), reader,
+              reconstruction);
   }
   reader.ExpectEnd();
 }
@@ -270,7 +296,8 @@ void ParseFramesBinary(const std::string& data, const std::string& source,
       data_id.id = reader.Read<uint64_t>("data id");
       frame.data_ids.push_back(data_id);
     }
-    reconstruction->AddFrame(std::move(frame));
+    AddRecord(&Reconstruction::AddFrame, std::move(frame), reader,
+              reconstruction);
   }
   reader.ExpectEnd();
 }

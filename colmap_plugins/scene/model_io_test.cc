@@ -2,28 +2,21 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
 #include <random>
 
 #include "colmap_plugins/scene/model_stats.h"
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
+#include "tests/support/process.h"
 
 namespace uw {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh, empty directory per test under the system temp dir.
-fs::path TestDir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir =
-      fs::temp_directory_path() / "uw_model_io_test" /
-      (std::string(info->test_suite_name()) + "." + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path TestDir() { return testing::FreshTestDir("uw_model_io_test"); }
 
 // A small but complete model: two cameras of different models, three
 // images with observed and unobserved 2D points, points with tracks, and
@@ -102,6 +95,11 @@ Reconstruction MakeRigModel(std::mt19937* rng) {
   frame.data_ids = {{{SensorType::kCamera, 3}, 5},
                     {{SensorType::kCamera, 1}, 2}};
   model.AddFrame(frame);
+  // Image 9 in a frame of its own: every image of a 4.x model has a frame.
+  frame.frame_id = 2;
+  frame.rig_from_world = model.Images()[2].cam_from_world;
+  frame.data_ids = {{{SensorType::kCamera, 3}, 9}};
+  model.AddFrame(frame);
   return model;
 }
 
@@ -112,6 +110,15 @@ void ExpectSameModel(const Reconstruction& a, const Reconstruction& b) {
   EXPECT_EQ(RigsBinary(a), RigsBinary(b));
   EXPECT_EQ(FramesBinary(a), FramesBinary(b));
   EXPECT_EQ(a.layout, b.layout);
+}
+
+std::string ErrorOf(const std::function<void()>& body) {
+  try {
+    body();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "(no error)";
 }
 
 TEST(ModelIo, BinaryRoundTripIsByteIdenticalAndKeepsOrder) {
@@ -248,6 +255,72 @@ TEST(ModelIo, TruncatedBinaryFilesAreRejectedAtEveryLength) {
   }
 }
 
+TEST(ModelIo, BinaryDuplicateIdsAndSensorTypesNameFileAndByte) {
+  std::mt19937 rng(10);
+  const Reconstruction model = MakeRigModel(&rng);
+  const std::string cameras = CamerasBinary(model);
+  // Two cameras (SIMPLE_RADIAL first): give the second the first one's id.
+  std::string duplicated = cameras;
+  std::memcpy(&duplicated[8 + 4 + 4 + 8 + 8 + 4 * 8], &cameras[8], 4);
+  Reconstruction read;
+  std::string message = ErrorOf(
+      [&] { ParseCamerasBinary(duplicated, "sparse/cameras.bin", &read); });
+  EXPECT_NE(message.find("sparse/cameras.bin: byte "), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("duplicate camera id 3"), std::string::npos)
+      << message;
+  // The reference sensor type of the first rig: after count, id, #sensors.
+  std::string rigs = RigsBinary(model);
+  const int32_t robot = 5;
+  std::memcpy(&rigs[8 + 4 + 4], &robot, 4);
+  Reconstruction read_rigs;
+  message = ErrorOf([&] { ParseRigsBinary(rigs, "rigs.bin", &read_rigs); });
+  EXPECT_NE(message.find("rigs.bin: byte 20: unknown sensor type 5"),
+            std::string::npos)
+      << message;
+}
+
+TEST(ModelIo, ColmapFourModelsNeedEveryImageInExactlyOneFrame) {
+  std::mt19937 rng(11);
+  Reconstruction model = MakeRigModel(&rng);
+  model.Frames()[1].data_ids.clear();
+  const fs::path dir = TestDir();
+  WriteModel(model, dir / "none", ModelFormat::kBinary);
+  EXPECT_NE(ErrorOf([&] { ReadModel(dir / "none"); })
+                .find("image 9 (dive1/img_9.png) is in no frame"),
+            std::string::npos);
+  model = MakeRigModel(&rng);
+  model.Frames()[1].data_ids[0].id = 5;  // image 5 in frames 1 and 2
+  WriteModel(model, dir / "twice", ModelFormat::kText);
+  EXPECT_NE(ErrorOf([&] { ReadModel(dir / "twice"); })
+                .find("image 5 (dive1/img_5.png) is in frames 1 and 2"),
+            std::string::npos);
+  model = MakeRigModel(&rng);
+  model.Rigs()[0].ref_sensor->id = 77;
+  WriteModel(model, dir / "rig", ModelFormat::kBinary);
+  EXPECT_NE(ErrorOf([&] { ReadModel(dir / "rig"); })
+                .find("rig 1 names camera 77"),
+            std::string::npos);
+}
+
+TEST(ModelIo, NeverWritesIntoAnotherModelsFolder) {
+  std::mt19937 rng(12);
+  const fs::path dir = TestDir();
+  WriteModel(MakeRigModel(&rng), dir, ModelFormat::kBinary);
+  // A 3.x model over a 4.x one would leave rigs.bin and frames.bin behind
+  // and be read back as a mixed model.
+  const std::string message = ErrorOf(
+      [&] { WriteModel(MakeModel(&rng), dir, ModelFormat::kBinary); });
+  EXPECT_NE(message.find("rigs.bin: belongs to another model"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(ReadModel(dir).layout, ModelLayout::kColmap4);
+  // Text beside binary would be shadowed by it on reading.
+  EXPECT_THROW(WriteModel(MakeRigModel(&rng), dir, ModelFormat::kText), Error);
+  // Replacing a model of the same layout and format is fine.
+  EXPECT_NO_THROW(WriteModel(MakeRigModel(&rng), dir, ModelFormat::kBinary));
+}
+
 TEST(ModelIo, CorruptCountIsRejectedBeforeAllocating) {
   std::string bytes(8, '\xff');  // 2^64 - 1 cameras
   Reconstruction model;
@@ -259,15 +332,6 @@ TEST(ModelIo, CorruptCountIsRejectedBeforeAllocating) {
               std::string::npos)
         << error.what();
   }
-}
-
-std::string ErrorOf(const std::function<void()>& body) {
-  try {
-    body();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "(no error)";
 }
 
 TEST(ModelIo, WrongParameterCountNamesLineModelAndCounts) {

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "colmap_plugins/scene/model_io.h"
+#include "colmap_plugins/scene/model_stats.h"
 #include "colmap_plugins/util/error.h"
 
 namespace uw {
@@ -195,13 +196,6 @@ void WritePose(const Rigid3d& pose, std::ostream& line) {
        << pose.translation.z() << " ";
 }
 
-size_t NumObservations(const Reconstruction& reconstruction) {
-  size_t num_observations = 0;
-  for (const Image& image : reconstruction.Images()) {
-    num_observations += image.NumPoints3D();
-  }
-  return num_observations;
-}
 
 }  // namespace
 
@@ -413,7 +407,7 @@ std::string ImagesText(const Reconstruction& reconstruction) {
   const double mean_observations =
       num_images == 0
           ? 0.0
-          : NumObservations(reconstruction) / static_cast<double>(num_images);
+          : ComputeModelStats(reconstruction).num_observations / static_cast<double>(num_images);
   TextStream file;
   file << "# Image list with two lines of data per image:\n"
        << "#   IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, CAMERA_ID, NAME\n"
@@ -449,7 +443,7 @@ std::string Points3DText(const Reconstruction& reconstruction) {
   const double mean_track_length =
       num_points == 0
           ? 0.0
-          : NumObservations(reconstruction) / static_cast<double>(num_points);
+          : ComputeModelStats(reconstruction).num_observations / static_cast<double>(num_points);
   TextStream file;
   file << "# 3D point list with one line of data per point:\n"
        << "#   POINT3D_ID, X, Y, Z, R, G, B, ERROR, TRACK[] as (IMAGE_ID, "

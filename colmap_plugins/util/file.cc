@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -24,8 +25,16 @@ void RemoveQuietly(const std::filesystem::path& path) {
 void WriteFilesAtomically(const std::vector<PendingFile>& files,
                           const bool binary) {
   std::vector<std::filesystem::path> written;
+  // Folders this call creates are removed again on failure, deepest first,
+  // so that a failed write leaves the file system as it was.
+  std::vector<std::filesystem::path> created_dirs;
   try {
     for (const PendingFile& file : files) {
+      for (std::filesystem::path dir = file.path.parent_path();
+           !dir.empty() && !std::filesystem::exists(dir);
+           dir = dir.parent_path()) {
+        created_dirs.push_back(dir);
+      }
       if (file.path.has_parent_path()) {
         std::filesystem::create_directories(file.path.parent_path());
       }
@@ -52,6 +61,11 @@ void WriteFilesAtomically(const std::vector<PendingFile>& files,
     }
   } catch (...) {
     for (const auto& tmp : written) RemoveQuietly(tmp);
+    std::sort(created_dirs.begin(), created_dirs.end(),
+              [](const auto& a, const auto& b) {
+                return a.string().size() > b.string().size();
+              });
+    for (const auto& dir : created_dirs) RemoveQuietly(dir);
     throw;
   }
   for (size_t i = 0; i < files.size(); ++i) {
