@@ -382,11 +382,10 @@ TEST(ColmapModel, CliRefusesToConvertAModelInPlace) {
   const fs::path dir = FreshTestDir("uw_colmap_model_test") / "model";
   WriteModel(ReadModel(kSparseDir), dir, ModelFormat::kText);
   const std::string before = ReadFileToString(dir / "images.txt");
-  const auto result = RunProcess(kUwcolmap.string() +
-                                     " model_converter --input_path " +
-                                     Quoted(dir) + " --output_path " +
-                                     Quoted(dir / ".") + " --output_type TXT",
-                                 true);
+  const auto result = RunProcess(
+      kUwcolmap.string() + " model_converter --input_path " + Quoted(dir) +
+          " --output_path " + Quoted(dir / ".") + " --output_type TXT",
+      true);
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_NE(result.output.find("is the input folder"), std::string::npos)
       << result.output;

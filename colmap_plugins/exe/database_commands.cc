@@ -57,9 +57,9 @@ int RunDatabaseAnalyzer(int argc, char** argv) {
         DatabaseSchemaName(database.Schema()).c_str(),
         database.HasRigsAndFrames() ? ", with rigs and frames" : "",
         database.ReadAllCameras().size(), images.size(),
-        num_images_with_keypoints, num_keypoints,
-        num_matched_pairs, num_verified_pairs,
-        num_inlier_matches, priors.size(), num_priors_with_covariance);
+        num_images_with_keypoints, num_keypoints, num_matched_pairs,
+        num_verified_pairs, num_inlier_matches, priors.size(),
+        num_priors_with_covariance);
   });
 }
 

@@ -172,8 +172,8 @@ void Reconstruction::CheckRigsAndFrames(const std::string& source) const {
     for (const SensorId& sensor : sensors) {
       if (sensor.type == SensorType::kCamera &&
           FindCamera(sensor.id) == nullptr) {
-        throw ErrorAt(source, ": rig ", rig.rig_id, " names camera ",
-                      sensor.id, " which is not in the model");
+        throw ErrorAt(source, ": rig ", rig.rig_id, " names camera ", sensor.id,
+                      " which is not in the model");
       }
     }
   }

@@ -273,8 +273,7 @@ void ParseRigsBinary(const std::string& data, const std::string& source,
       }
       rig.non_ref_sensors.push_back(sensor);
     }
-    AddRecord(&Reconstruction::AddRig, std::move(rig), reader,
-              reconstruction);
+    AddRecord(&Reconstruction::AddRig, std::move(rig), reader, reconstruction);
   }
   reader.ExpectEnd();
 }

@@ -286,21 +286,23 @@ TEST(ModelIo, ColmapFourModelsNeedEveryImageInExactlyOneFrame) {
   model.Frames()[1].data_ids.clear();
   const fs::path dir = TestDir();
   WriteModel(model, dir / "none", ModelFormat::kBinary);
-  EXPECT_NE(ErrorOf([&] { ReadModel(dir / "none"); })
-                .find("image 9 (dive1/img_9.png) is in no frame"),
+  EXPECT_NE(ErrorOf([&] {
+              ReadModel(dir / "none");
+            }).find("image 9 (dive1/img_9.png) is in no frame"),
             std::string::npos);
   model = MakeRigModel(&rng);
   model.Frames()[1].data_ids[0].id = 5;  // image 5 in frames 1 and 2
   WriteModel(model, dir / "twice", ModelFormat::kText);
-  EXPECT_NE(ErrorOf([&] { ReadModel(dir / "twice"); })
-                .find("image 5 (dive1/img_5.png) is in frames 1 and 2"),
+  EXPECT_NE(ErrorOf([&] {
+              ReadModel(dir / "twice");
+            }).find("image 5 (dive1/img_5.png) is in frames 1 and 2"),
             std::string::npos);
   model = MakeRigModel(&rng);
   model.Rigs()[0].ref_sensor->id = 77;
   WriteModel(model, dir / "rig", ModelFormat::kBinary);
-  EXPECT_NE(ErrorOf([&] { ReadModel(dir / "rig"); })
-                .find("rig 1 names camera 77"),
-            std::string::npos);
+  EXPECT_NE(
+      ErrorOf([&] { ReadModel(dir / "rig"); }).find("rig 1 names camera 77"),
+      std::string::npos);
 }
 
 TEST(ModelIo, NeverWritesIntoAnotherModelsFolder) {
@@ -309,8 +311,8 @@ TEST(ModelIo, NeverWritesIntoAnotherModelsFolder) {
   WriteModel(MakeRigModel(&rng), dir, ModelFormat::kBinary);
   // A 3.x model over a 4.x one would leave rigs.bin and frames.bin behind
   // and be read back as a mixed model.
-  const std::string message = ErrorOf(
-      [&] { WriteModel(MakeModel(&rng), dir, ModelFormat::kBinary); });
+  const std::string message =
+      ErrorOf([&] { WriteModel(MakeModel(&rng), dir, ModelFormat::kBinary); });
   EXPECT_NE(message.find("rigs.bin: belongs to another model"),
             std::string::npos)
       << message;

@@ -196,7 +196,6 @@ void WritePose(const Rigid3d& pose, std::ostream& line) {
        << pose.translation.z() << " ";
 }
 
-
 }  // namespace
 
 void ParseCamerasText(const std::string& data, const std::string& source,
@@ -405,9 +404,9 @@ std::string CamerasText(const Reconstruction& reconstruction) {
 std::string ImagesText(const Reconstruction& reconstruction) {
   const size_t num_images = reconstruction.Images().size();
   const double mean_observations =
-      num_images == 0
-          ? 0.0
-          : ComputeModelStats(reconstruction).num_observations / static_cast<double>(num_images);
+      num_images == 0 ? 0.0
+                      : ComputeModelStats(reconstruction).num_observations /
+                            static_cast<double>(num_images);
   TextStream file;
   file << "# Image list with two lines of data per image:\n"
        << "#   IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, CAMERA_ID, NAME\n"
@@ -441,9 +440,9 @@ std::string ImagesText(const Reconstruction& reconstruction) {
 std::string Points3DText(const Reconstruction& reconstruction) {
   const size_t num_points = reconstruction.Points3D().size();
   const double mean_track_length =
-      num_points == 0
-          ? 0.0
-          : ComputeModelStats(reconstruction).num_observations / static_cast<double>(num_points);
+      num_points == 0 ? 0.0
+                      : ComputeModelStats(reconstruction).num_observations /
+                            static_cast<double>(num_points);
   TextStream file;
   file << "# 3D point list with one line of data per point:\n"
        << "#   POINT3D_ID, X, Y, Z, R, G, B, ERROR, TRACK[] as (IMAGE_ID, "

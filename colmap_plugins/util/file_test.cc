@@ -20,25 +20,25 @@ fs::path EmptyDir(const std::string& name) {
 
 TEST(WriteFilesAtomically, WritesAllFiles) {
   const fs::path dir = EmptyDir("writes");
-  WriteFilesAtomically({{dir / "a" / "x.txt", [](std::ostream& s) { s << "x"; }},
-                        {dir / "y.txt", [](std::ostream& s) { s << "y"; }}},
-                       false);
+  WriteFilesAtomically(
+      {{dir / "a" / "x.txt", [](std::ostream& s) { s << "x"; }},
+       {dir / "y.txt", [](std::ostream& s) { s << "y"; }}},
+      false);
   EXPECT_EQ(ReadFileToString(dir / "a" / "x.txt"), "x");
   EXPECT_EQ(ReadFileToString(dir / "y.txt"), "y");
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()),
-            2);
+  EXPECT_EQ(
+      std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
 }
 
 TEST(WriteFilesAtomically, FailureLeavesTheFileSystemAsItWas) {
   const fs::path dir = EmptyDir("failure");
   std::ofstream(dir / "keep.txt") << "old";
   const auto failing = [](std::ostream&) { throw Error("writer failed"); };
-  EXPECT_THROW(
-      WriteFilesAtomically(
-          {{dir / "keep.txt", [](std::ostream& s) { s << "new"; }},
-           {dir / "new" / "deeper" / "z.txt", failing}},
-          false),
-      Error);
+  EXPECT_THROW(WriteFilesAtomically(
+                   {{dir / "keep.txt", [](std::ostream& s) { s << "new"; }},
+                    {dir / "new" / "deeper" / "z.txt", failing}},
+                   false),
+               Error);
   // The old file is untouched, temporaries and created folders are gone.
   EXPECT_EQ(ReadFileToString(dir / "keep.txt"), "old");
   std::vector<std::string> left;

@@ -1,0 +1,58 @@
+// uwsim generate: a world, a survey over it, the rendered images, the
+// navigation log and the ground truth, all from one configuration and seed.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+
+#include <nlohmann/json.hpp>
+
+#include "colmap_plugins/scene/model.h"
+#include "sim/navigation.h"
+#include "sim/renderer.h"
+#include "sim/survey.h"
+#include "sim/world.h"
+
+namespace uw::sim {
+
+// Every parameter of a simulation; sim.json in the output records it whole.
+struct SimConfig {
+  WorldKind world = WorldKind::kSeafloor;
+  SurveyKind survey = SurveyKind::kLawnmower;
+  uint64_t seed = 1;
+  Camera camera = DefaultCamera();
+  WorldOptions world_options;
+  SurveyOptions survey_options;
+  NavigationOptions navigation;
+  RenderOptions render;
+
+  // 1024 x 768 SIMPLE_RADIAL with a mild barrel distortion.
+  static Camera DefaultCamera();
+  void Check() const;
+};
+void to_json(nlohmann::json& json, const SimConfig& config);
+// Reads the sections present ("world", "survey", "camera", ...), keeping
+// defaults for the rest; unknown keys are errors.
+void from_json(const nlohmann::json& json, SimConfig& config);
+
+struct GenerateSummary {
+  size_t num_images = 0;
+  size_t num_triangles = 0;
+  std::vector<Eigen::Vector3d> dive_biases;
+};
+
+// Writes into `out` (which must be empty or absent):
+//   images/NNNNN.png        the survey images
+//   nav.csv                 navigation with errors
+//   truth/cameras.txt, images.txt, points3D.txt   true poses (COLMAP text)
+//   truth/ref_images.txt    true camera centres (colmap model_aligner)
+//   truth/nav.csv           true navigation
+//   truth/mesh.ply          the world's mesh
+//   truth/sim.json          the configuration, seed and dive biases
+// `progress(done, total)` is called after each image.
+GenerateSummary Generate(
+    const SimConfig& config, const std::filesystem::path& out,
+    const std::function<void(size_t, size_t)>& progress = nullptr);
+
+}  // namespace uw::sim

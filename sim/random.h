@@ -1,0 +1,43 @@
+// SplitMix64 (Steele, Lea & Flood 2014): the one source of randomness of
+// uwsim. Its integer arithmetic gives the same numbers on every platform
+// and compiler (std distributions do not), and as a pure function of a key
+// it serves counter-based generators whose results do not depend on how
+// work is split between threads.
+#pragma once
+
+#include <cstdint>
+
+namespace uw::sim {
+
+inline constexpr uint64_t kSplitMix64Gamma = 0x9E3779B97F4A7C15ull;
+
+// SplitMix64's step and output function: a bijection of x + gamma that
+// mixes every input bit into every output bit.
+inline uint64_t SplitMix64(uint64_t x) {
+  x += kSplitMix64Gamma;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// The sequential generator: SplitMix64 of seed, seed + gamma, ...
+class SplitMix64Stream {
+ public:
+  explicit SplitMix64Stream(uint64_t seed) : state_(seed) {}
+
+  uint64_t Next() {
+    const uint64_t value = SplitMix64(state_);
+    state_ += kSplitMix64Gamma;
+    return value;
+  }
+  // Uniform in [0, 1) with 53 random bits.
+  double Uniform() { return static_cast<double>(Next() >> 11) * 0x1.0p-53; }
+  double Uniform(double low, double high) {
+    return low + (high - low) * Uniform();
+  }
+
+ private:
+  uint64_t state_;
+};
+
+}  // namespace uw::sim

@@ -1,0 +1,91 @@
+// Survey trajectories over a synthetic world: where the vehicle is when each
+// image is taken, and how the camera sits on the vehicle.
+//
+// Frames: world = the world's local East-North-Up frame (metres, z up).
+// Vehicle body frame: x forward, y left, z up. Camera frame: COLMAP's
+// (x right, y down, z forward). Vehicle attitude as roll, pitch, yaw with
+// world_from_vehicle = Rz(yaw) * Ry(pitch) * Rx(roll), yaw counter-clockwise
+// from east (docs/uwsim.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "colmap_plugins/scene/model.h"
+
+namespace uw::sim {
+
+struct World;
+
+enum class SurveyKind {
+  kLawnmower,   // overlapping back-and-forth passes over the survey area
+  kSinglePass,  // one long sequential pass along the survey axis (doming)
+};
+std::string SurveyKindName(SurveyKind kind);
+SurveyKind SurveyKindFromName(const std::string& name);  // throws uw::Error
+
+struct SurveyOptions {
+  // Camera stand-off from the survey plane (altitude over a floor, range to
+  // a wall), metres.
+  double distance_m = 2.5;
+  // Overlap of consecutive images along a pass and of neighbouring passes,
+  // as fractions of the image footprint.
+  double forward_overlap = 0.65;
+  double side_overlap = 0.5;
+  // Fraction of the world's survey extent covered (centred), per axis. The
+  // defaults give a small survey (~30 images of the default seafloor) that
+  // stock colmap reconstructs in a few minutes on 2 cores.
+  double coverage_along = 0.45;
+  double coverage_across = 0.45;
+  double speed_m_per_s = 0.5;
+  // Vehicle motion noise: standard deviations of roll/pitch/yaw (deg) and
+  // of the position (m) around the nominal track.
+  double attitude_jitter_deg = 2.0;
+  double position_jitter_m = 0.05;
+  // Camera on the vehicle: lever arm (vehicle frame, m) and boresight
+  // (small rotation from the nominal mount, roll/pitch/yaw in deg).
+  Eigen::Vector3d lever_arm_m = Eigen::Vector3d(0.6, 0.0, -0.3);
+  Eigen::Vector3d boresight_deg = Eigen::Vector3d(0.3, -0.5, 0.8);
+  // 0: no limit; otherwise the survey stops after this many images.
+  int max_images = 0;
+
+  void Check() const;
+};
+void to_json(nlohmann::json& json, const SurveyOptions& options);
+void from_json(const nlohmann::json& json, SurveyOptions& options);
+
+struct SurveyStation {
+  // "00000", "00001", ... in survey order; the writer adds the extension.
+  std::string image_name;
+  double time_s = 0.0;
+  int dive = 1;
+  int pass = 0;  // index of the pass (line) this image belongs to
+  // True vehicle attitude (radians) and position.
+  Eigen::Vector3d vehicle_rpy = Eigen::Vector3d::Zero();
+  Eigen::Vector3d vehicle_position = Eigen::Vector3d::Zero();
+  Rigid3d cam_from_world;
+};
+
+// Rotation world_from_vehicle for roll, pitch, yaw (radians).
+Eigen::Matrix3d WorldFromVehicleRotation(const Eigen::Vector3d& rpy);
+// Inverse of WorldFromVehicleRotation (yaw in (-pi, pi]).
+Eigen::Vector3d RollPitchYawFromRotation(const Eigen::Matrix3d& rotation);
+
+// The camera's pose on the vehicle: looking down at a floor, looking to
+// starboard (vehicle −y) at a wall (a survey plane steeper than ~45°).
+// Includes the lever arm and boresight of `options`.
+Rigid3d VehicleFromCam(const World& world, const SurveyOptions& options);
+
+// Plans the stations of a survey of `world` seen through `camera`. The
+// image footprint, and so the spacing, follows from the camera's focal
+// length and size at the stand-off distance. Deterministic for a seed.
+std::vector<SurveyStation> PlanSurvey(SurveyKind kind, const World& world,
+                                      const Camera& camera,
+                                      const SurveyOptions& options,
+                                      uint64_t seed);
+
+}  // namespace uw::sim

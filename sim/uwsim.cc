@@ -1,0 +1,107 @@
+// uwsim: synthetic underwater worlds and surveys with ground truth.
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <optional>
+
+#include <tbb/global_control.h>
+#include <CLI/CLI.hpp>
+
+#include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/file.h"
+#include "sim/generate.h"
+
+int main(int argc, char** argv) {
+  CLI::App app(
+      "uwsim: synthetic underwater worlds and surveys with ground truth "
+      "(images, navigation, true poses, mesh).\n\n"
+      "Example:\n"
+      "  uwsim generate --world seafloor --survey lawnmower --out sim --seed 1",
+      "uwsim");
+  app.require_subcommand(1);
+  CLI::App* generate = app.add_subcommand(
+      "generate",
+      "Render a survey of a world; writes images/, nav.csv and truth/ "
+      "(docs/uwsim.md).\n\nExample:\n  uwsim generate --world seafloor "
+      "--survey lawnmower --out sim --seed 1 [--config sim.json]");
+  std::string world = "seafloor";
+  std::string survey = "lawnmower";
+  std::string out;
+  std::string config_path;
+  uint64_t seed = 1;
+  int max_images = -1;
+  int num_threads = -1;
+  generate->add_option("--world", world, "seafloor | vent | scarp")
+      ->capture_default_str();
+  generate->add_option("--survey", survey, "lawnmower | single_pass")
+      ->capture_default_str();
+  generate->add_option("--out", out, "Output folder (new or empty)")
+      ->required();
+  generate->add_option("--seed", seed, "Random seed")->capture_default_str();
+  generate->add_option("--config", config_path,
+                       "JSON file with any of the sections of truth/sim.json; "
+                       "flags override its world, survey and seed");
+  generate->add_option("--max_images", max_images,
+                       "Stop the survey after this many images");
+  generate
+      ->add_option("--num_threads", num_threads,
+                   "Threads to render with (-1: all cores); the output "
+                   "does not depend on it")
+      ->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error) == 0 ? 0 : 2;
+  }
+  try {
+    uw::sim::SimConfig config;
+    if (!config_path.empty()) {
+      nlohmann::json json;
+      try {
+        json = nlohmann::json::parse(uw::ReadFileToString(config_path));
+      } catch (const nlohmann::json::parse_error& error) {
+        throw uw::ErrorAt(config_path, ": ", error.what());
+      }
+      try {
+        json.get_to(config);
+      } catch (const nlohmann::json::exception& error) {
+        throw uw::ErrorAt(config_path, ": ", error.what());
+      }
+    }
+    if (generate->count("--world") || config_path.empty()) {
+      config.world = uw::sim::WorldKindFromName(world);
+    }
+    if (generate->count("--survey") || config_path.empty()) {
+      config.survey = uw::sim::SurveyKindFromName(survey);
+    }
+    if (generate->count("--seed") || config_path.empty()) config.seed = seed;
+    if (max_images >= 0) config.survey_options.max_images = max_images;
+    std::optional<tbb::global_control> thread_limit;
+    if (num_threads > 0) {
+      thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                           static_cast<size_t>(num_threads));
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const auto seconds = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                           start)
+          .count();
+    };
+    const uw::sim::GenerateSummary summary =
+        uw::sim::Generate(config, out, [&](size_t done, size_t total) {
+          if (done == total || done % 10 == 0) {
+            std::cout << "[uwsim] rendered " << done << "/" << total
+                      << " images (" << seconds() << " s)" << std::endl;
+          }
+        });
+    std::cout << "[uwsim] " << summary.num_images << " images of "
+              << uw::sim::WorldKindName(config.world) << "/"
+              << uw::sim::SurveyKindName(config.survey) << " ("
+              << summary.num_triangles << " triangles) written to " << out
+              << " in " << seconds() << " s" << std::endl;
+  } catch (const std::exception& error) {
+    std::cerr << "ERROR: " << error.what() << std::endl;
+    return 1;
+  }
+  return 0;
+}
