@@ -34,12 +34,14 @@ struct SurveyOptions {
   double distance_m = 2.5;
   // Overlap of consecutive images along a pass and of neighbouring passes,
   // as fractions of the image footprint.
-  double forward_overlap = 0.65;
+  double forward_overlap = 0.75;
   double side_overlap = 0.5;
   // Fraction of the world's survey extent covered (centred), per axis. The
   // defaults give a small survey (~30 images of the default seafloor) that
-  // stock colmap reconstructs in a few minutes on 2 cores.
-  double coverage_along = 0.45;
+  // stock colmap reconstructs in a few minutes on 2 cores; 75 % forward
+  // overlap leaves half of each image in three consecutive ones, which
+  // colmap's incremental mapper needs to chain a pass reliably.
+  double coverage_along = 0.35;
   double coverage_across = 0.45;
   double speed_m_per_s = 0.5;
   // Vehicle motion noise: standard deviations of roll/pitch/yaw (deg) and
