@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "colmap_plugins/util/error.h"
+#include "sim/json_fields.h"
 #include "sim/world.h"
 
 namespace uw::sim {
@@ -130,48 +131,25 @@ void to_json(nlohmann::json& json, const SurveyOptions& options) {
           {"speed_m_per_s", options.speed_m_per_s},
           {"attitude_jitter_deg", options.attitude_jitter_deg},
           {"position_jitter_m", options.position_jitter_m},
-          {"lever_arm_m",
-           {options.lever_arm_m.x(), options.lever_arm_m.y(),
-            options.lever_arm_m.z()}},
-          {"boresight_deg",
-           {options.boresight_deg.x(), options.boresight_deg.y(),
-            options.boresight_deg.z()}},
+          {"lever_arm_m", ToJson(options.lever_arm_m)},
+          {"boresight_deg", ToJson(options.boresight_deg)},
           {"max_images", options.max_images}};
 }
 
 void from_json(const nlohmann::json& json, SurveyOptions& options) {
-  const auto vector3 = [&](const char* key, Eigen::Vector3d* value) {
-    if (!json.contains(key)) return;
-    const auto& array = json.at(key);
-    if (!array.is_array() || array.size() != 3) {
-      throw ErrorAt("survey option ", key, " must be an array of 3 numbers");
-    }
-    for (int i = 0; i < 3; ++i) (*value)(i) = array.at(i).get<double>();
-  };
-  const auto number = [&](const char* key, auto* value) {
-    if (json.contains(key)) json.at(key).get_to(*value);
-  };
-  for (const auto& [key, unused] : json.items()) {
-    static const std::vector<std::string> kKnown = {
-        "distance_m",          "forward_overlap",   "side_overlap",
-        "coverage_along",      "coverage_across",   "speed_m_per_s",
-        "attitude_jitter_deg", "position_jitter_m", "lever_arm_m",
-        "boresight_deg",       "max_images"};
-    if (std::find(kKnown.begin(), kKnown.end(), key) == kKnown.end()) {
-      throw ErrorAt("unknown survey option '", key, "'");
-    }
-  }
-  number("distance_m", &options.distance_m);
-  number("forward_overlap", &options.forward_overlap);
-  number("side_overlap", &options.side_overlap);
-  number("coverage_along", &options.coverage_along);
-  number("coverage_across", &options.coverage_across);
-  number("speed_m_per_s", &options.speed_m_per_s);
-  number("attitude_jitter_deg", &options.attitude_jitter_deg);
-  number("position_jitter_m", &options.position_jitter_m);
-  vector3("lever_arm_m", &options.lever_arm_m);
-  vector3("boresight_deg", &options.boresight_deg);
-  number("max_images", &options.max_images);
+  JsonFields fields(json, "survey_options");
+  fields.Read("distance_m", &options.distance_m);
+  fields.Read("forward_overlap", &options.forward_overlap);
+  fields.Read("side_overlap", &options.side_overlap);
+  fields.Read("coverage_along", &options.coverage_along);
+  fields.Read("coverage_across", &options.coverage_across);
+  fields.Read("speed_m_per_s", &options.speed_m_per_s);
+  fields.Read("attitude_jitter_deg", &options.attitude_jitter_deg);
+  fields.Read("position_jitter_m", &options.position_jitter_m);
+  fields.Read("lever_arm_m", &options.lever_arm_m);
+  fields.Read("boresight_deg", &options.boresight_deg);
+  fields.Read("max_images", &options.max_images);
+  fields.RejectUnknown();
 }
 
 Eigen::Matrix3d WorldFromVehicleRotation(const Eigen::Vector3d& rpy) {
