@@ -1,12 +1,17 @@
 #include "sim/generate.h"
 
+#include <memory>
+
 #include <opencv2/imgcodecs.hpp>
 
 #include "colmap_plugins/scene/model_io.h"
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
+#include "laserscale/laser_setup.h"
+#include "sim/laser_images.h"
 #include "sim/mesh.h"
 #include "sim/ray_caster.h"
+#include "sim/rig.h"
 
 namespace uw::sim {
 namespace {
@@ -30,19 +35,35 @@ std::string RefImagesText(const std::vector<SurveyStation>& stations) {
   return text.str();
 }
 
-Reconstruction TrueModel(const SimConfig& config,
-                         const std::vector<SurveyStation>& stations) {
+std::string ImageTimesCsv(const std::vector<SurveyStation>& stations) {
+  std::ostringstream text;
+  text.precision(17);
+  text << "# uwsim image times: seconds since the survey's start\n"
+       << "image_name,time\n";
+  for (const SurveyStation& station : stations) {
+    text << station.image_name << "," << station.time_s << "\n";
+  }
+  return text.str();
+}
+
+// Camera k's images are images[k]; cameras[k] gets camera_id k + 1.
+Reconstruction TrueModel(
+    const std::vector<Camera>& cameras,
+    const std::vector<std::vector<SurveyStation>>& images) {
   Reconstruction model;
-  Camera camera = config.camera;
-  camera.camera_id = 1;
-  model.AddCamera(camera);
-  for (size_t i = 0; i < stations.size(); ++i) {
-    Image image;
-    image.image_id = static_cast<image_t>(i + 1);
-    image.camera_id = 1;
-    image.name = stations[i].image_name;
-    image.cam_from_world = stations[i].cam_from_world;
-    model.AddImage(image);
+  image_t image_id = 0;
+  for (size_t k = 0; k < cameras.size(); ++k) {
+    Camera camera = cameras[k];
+    camera.camera_id = static_cast<camera_t>(k + 1);
+    model.AddCamera(camera);
+    for (const SurveyStation& station : images[k]) {
+      Image image;
+      image.image_id = ++image_id;
+      image.camera_id = camera.camera_id;
+      image.name = station.image_name;
+      image.cam_from_world = station.cam_from_world;
+      model.AddImage(image);
+    }
   }
   return model;
 }
@@ -74,21 +95,21 @@ void SimConfig::Check() const {
   survey_options.Check();
   navigation.Check();
   render.Check();
+  lasers.Check();
+  rig.Check();
 }
 
 void to_json(nlohmann::json& json, const SimConfig& config) {
   json = {{"world", WorldKindName(config.world)},
           {"survey", SurveyKindName(config.survey)},
           {"seed", config.seed},
-          {"camera",
-           {{"model", CameraModelIdToName(config.camera.model_id)},
-            {"width", config.camera.width},
-            {"height", config.camera.height},
-            {"params", config.camera.params}}},
+          {"camera", CameraJson(config.camera)},
+          {"rig", config.rig},
           {"world_options", config.world_options},
           {"survey_options", config.survey_options},
           {"navigation", config.navigation},
-          {"render", config.render}};
+          {"render", config.render},
+          {"lasers", config.lasers}};
 }
 
 void from_json(const nlohmann::json& json, SimConfig& config) {
@@ -100,14 +121,10 @@ void from_json(const nlohmann::json& json, SimConfig& config) {
     } else if (key == "seed") {
       config.seed = value.get<uint64_t>();
     } else if (key == "camera") {
-      const std::string model = value.at("model").get<std::string>();
-      config.camera.model_id = CameraModelNameToId(model);
-      if (config.camera.model_id == CameraModelId::kInvalid) {
-        throw ErrorAt("unknown camera model '", model, "'");
-      }
-      config.camera.width = value.at("width").get<uint64_t>();
-      config.camera.height = value.at("height").get<uint64_t>();
-      config.camera.params = value.at("params").get<std::vector<double>>();
+      config.camera = CameraFromJson(value, "camera");
+      config.camera.camera_id = 1;
+    } else if (key == "rig") {
+      value.get_to(config.rig);
     } else if (key == "world_options") {
       value.get_to(config.world_options);
     } else if (key == "survey_options") {
@@ -116,6 +133,8 @@ void from_json(const nlohmann::json& json, SimConfig& config) {
       value.get_to(config.navigation);
     } else if (key == "render") {
       value.get_to(config.render);
+    } else if (key == "lasers") {
+      value.get_to(config.lasers);
     } else {
       throw ErrorAt("unknown configuration section '", key, "'");
     }
@@ -136,36 +155,108 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
   if (stations.empty()) throw ErrorAt("the survey has no images");
   const std::string extension =
       config.render.sensor.jpeg_quality > 0 ? ".jpg" : ".png";
-  for (SurveyStation& station : stations) station.image_name += extension;
+  // With a rig, camera k's images go to images/camk/.
+  const bool rig = !config.rig.cameras.empty();
+  for (SurveyStation& station : stations) {
+    station.image_name = (rig ? "cam1/" : "") + station.image_name + extension;
+  }
+  std::vector<Camera> cameras = {config.camera};
+  std::vector<std::vector<SurveyStation>> images = {stations};
+  const Rigid3d vehicle_from_rig = VehicleFromCam(world, config.survey_options);
+  for (size_t k = 0; k < config.rig.cameras.size(); ++k) {
+    const RigCameraOptions& rig_camera = config.rig.cameras[k];
+    cameras.push_back(rig_camera.camera);
+    images.emplace_back();
+    for (size_t i = 0; i < stations.size(); ++i) {
+      SurveyStation station =
+          StationOfRigCamera(stations, i, vehicle_from_rig,
+                             rig_camera.cam_from_rig, rig_camera.time_offset_s);
+      station.image_name =
+          "cam" + std::to_string(k + 2) + stations[i].image_name.substr(4);
+      images.back().push_back(station);
+    }
+  }
+  std::vector<SurveyStation> all_images;
+  for (const std::vector<SurveyStation>& camera_images : images) {
+    all_images.insert(all_images.end(), camera_images.begin(),
+                      camera_images.end());
+  }
 
   GenerateSummary summary;
-  summary.num_images = stations.size();
+  summary.num_images = all_images.size();
   summary.num_triangles = world.mesh.triangles.size();
+  // The navigation log samples the vehicle when the reference camera fires.
   const std::vector<NavigationRecord> navigation = NoisyNavigation(
       stations, config.navigation, config.seed, &summary.dive_biases);
 
   const RayCaster caster(world.mesh);
-  // One renderer for the survey: it unprojects every pixel once.
-  const Renderer renderer(caster, *world.texture, config.camera, config.render);
+  // One renderer per camera: it unprojects every pixel once.
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  for (const Camera& camera : cameras) {
+    renderers.push_back(std::make_unique<Renderer>(caster, *world.texture,
+                                                   camera, config.render));
+  }
+  const std::vector<LaserShot> shots =
+      PlanLaserShots(stations, config.lasers, config.seed);
+  summary.num_laser_images = shots.size();
+  const size_t num_frames = all_images.size() + 2 * shots.size();
+  size_t frames_done = 0;
   const bool jpeg = config.render.sensor.jpeg_quality > 0;
-  for (size_t i = 0; i < stations.size(); ++i) {
+  // Frame k of the survey (laser images after the survey images) keys its
+  // noise with index k.
+  const auto render = [&](const Renderer& renderer,
+                          const Rigid3d& cam_from_world,
+                          const FrameOptions& frame, const fs::path& path) {
     const RenderedImage rendered =
-        renderer.Render(stations[i].cam_from_world, config.seed, i);
+        renderer.Render(cam_from_world, config.seed, frames_done, frame);
     // With JPEG the file is the very encoding the renderer decoded, so the
     // image on disk is the one the noise model describes.
     std::vector<uchar> bytes = rendered.jpeg;
     if (!jpeg && !cv::imencode(".png", rendered.image, bytes)) {
-      throw ErrorAt("cannot encode image ", stations[i].image_name);
+      throw ErrorAt("cannot encode image ", path.string());
     }
-    WriteFilesAtomically({{out / "images" / stations[i].image_name,
+    WriteFilesAtomically({{path,
                            [&bytes](std::ostream& stream) {
                              stream.write(
                                  reinterpret_cast<const char*>(bytes.data()),
                                  bytes.size());
                            }}},
                          true);
-    if (progress) progress(i + 1, stations.size());
+    ++frames_done;
+    if (progress) progress(frames_done, num_frames);
+  };
+  for (size_t k = 0; k < cameras.size(); ++k) {
+    for (const SurveyStation& station : images[k]) {
+      render(*renderers[k], station.cam_from_world, FrameOptions(),
+             out / "images" / station.image_name);
+    }
   }
+
+  const LaserSetup true_lasers = TrueLaserSetup(config.lasers);
+  FrameOptions lasers_on;
+  lasers_on.lasers = true_lasers.lasers;
+  lasers_on.optics = config.lasers.optics;
+  FrameOptions aux_frame;
+  aux_frame.gain_factor = config.lasers.aux_gain;
+  if (config.lasers.auxiliary == "shifted") {
+    aux_frame.lasers = lasers_on.lasers;
+    aux_frame.optics = lasers_on.optics;
+  }
+  nlohmann::json shots_truth = nlohmann::json::array();
+  for (const LaserShot& shot : shots) {
+    render(*renderers[0], shot.cam_from_world, lasers_on,
+           out / "laser_images" / shot.name);
+    render(*renderers[0], shot.aux_cam_from_world, aux_frame,
+           out / "laser_images" / shot.aux_name);
+    shots_truth.push_back(LaserShotTruth(shot, true_lasers, config.lasers,
+                                         caster, config.camera));
+  }
+  const nlohmann::json laser_images_json = {
+      {"format", "uwmetric-sim-laser-images"},
+      {"version", 1},
+      {"setup", true_lasers.name},
+      {"camera_id", 1},
+      {"images", shots_truth}};
 
   nlohmann::json sim_json = config;
   nlohmann::json biases = nlohmann::json::array();
@@ -173,19 +264,33 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
     biases.push_back({bias.x(), bias.y(), bias.z()});
   }
   sim_json["truth"] = {{"dive_biases_m", biases},
-                       {"num_images", stations.size()},
+                       {"num_images", all_images.size()},
+                       {"num_laser_images", shots.size()},
                        {"num_triangles", summary.num_triangles}};
-  WriteModel(TrueModel(config, stations), out / "truth", ModelFormat::kText);
+  WriteModel(TrueModel(cameras, images), out / "truth", ModelFormat::kText);
   WritePly(world.mesh, out / "truth" / "mesh.ply");
-  WriteFilesAtomically(
-      {TextFile(out / "nav.csv",
-                NavigationCsv(navigation, config.navigation.site_depth_m)),
-       TextFile(out / "truth" / "nav.csv",
-                NavigationCsv(TrueNavigation(stations),
-                              config.navigation.site_depth_m)),
-       TextFile(out / "truth" / "ref_images.txt", RefImagesText(stations)),
-       TextFile(out / "truth" / "sim.json", sim_json.dump(2) + "\n")},
-      false);
+  std::vector<PendingFile> files = {
+      TextFile(out / "image_times.csv", ImageTimesCsv(all_images)),
+      TextFile(out / "nav.csv",
+               NavigationCsv(navigation, config.navigation.site_depth_m)),
+      TextFile(out / "truth" / "nav.csv",
+               NavigationCsv(TrueNavigation(stations),
+                             config.navigation.site_depth_m)),
+      TextFile(out / "truth" / "ref_images.txt", RefImagesText(all_images)),
+      TextFile(out / "lasers.json",
+               LasersJsonText({CalibratedLaserSetup(true_lasers, config.lasers,
+                                                    config.seed)})),
+      TextFile(out / "truth" / "lasers.json", LasersJsonText({true_lasers})),
+      TextFile(out / "truth" / "laser_images.json",
+               laser_images_json.dump(2) + "\n"),
+      TextFile(out / "truth" / "sim.json", sim_json.dump(2) + "\n")};
+  if (rig) {
+    files.push_back(
+        TextFile(out / "rig.json", RigJsonText(config.rig, true, config.seed)));
+    files.push_back(TextFile(out / "truth" / "rig.json",
+                             RigJsonText(config.rig, false, config.seed)));
+  }
+  WriteFilesAtomically(files, false);
   return summary;
 }
 

@@ -9,8 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/scene/model.h"
+#include "sim/laser.h"
 #include "sim/navigation.h"
 #include "sim/renderer.h"
+#include "sim/rig.h"
 #include "sim/survey.h"
 #include "sim/world.h"
 
@@ -26,6 +28,8 @@ struct SimConfig {
   SurveyOptions survey_options;
   NavigationOptions navigation;
   RenderOptions render;
+  LaserOptions lasers;
+  RigOptions rig;  // more cameras besides `camera`
 
   // 1024 x 768 SIMPLE_RADIAL with a mild barrel distortion.
   static Camera DefaultCamera();
@@ -37,20 +41,30 @@ void to_json(nlohmann::json& json, const SimConfig& config);
 void from_json(const nlohmann::json& json, SimConfig& config);
 
 struct GenerateSummary {
-  size_t num_images = 0;
+  size_t num_images = 0;        // survey images of every camera
+  size_t num_laser_images = 0;  // each with its auxiliary image
   size_t num_triangles = 0;
   std::vector<Eigen::Vector3d> dive_biases;
 };
 
 // Writes into `out` (which must be empty or absent):
-//   images/NNNNN.png        the survey images
+//   images/NNNNN.png        the survey images (with a rig:
+//                           images/camK/NNNNN.png, camera K)
+//   image_times.csv         when each image was taken
+//   rig.json                with a rig: its calibration (with errors)
+//   laser_images/LNNNNN.png, LNNNNN_aux.png   laser images, auxiliaries
 //   nav.csv                 navigation with errors
+//   lasers.json             the laser set-up as calibrated (with errors)
 //   truth/cameras.txt, images.txt, points3D.txt   true poses (COLMAP text)
 //   truth/ref_images.txt    true camera centres (colmap model_aligner)
 //   truth/nav.csv           true navigation
+//   truth/lasers.json       the true laser set-up
+//   truth/rig.json          with a rig: the true relative poses
+//   truth/laser_images.json poses and true spots of the laser images
 //   truth/mesh.ply          the world's mesh
 //   truth/sim.json          the configuration, seed and dive biases
-// `progress(done, total)` is called after each image.
+// `progress(done, total)` is called after each image (laser and auxiliary
+// images included).
 GenerateSummary Generate(
     const SimConfig& config, const std::filesystem::path& out,
     const std::function<void(size_t, size_t)>& progress = nullptr);

@@ -5,6 +5,7 @@
 // work is split between threads.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 namespace uw::sim {
@@ -34,6 +35,11 @@ class SplitMix64Stream {
   double Uniform() { return static_cast<double>(Next() >> 11) * 0x1.0p-53; }
   double Uniform(double low, double high) {
     return low + (high - low) * Uniform();
+  }
+  // Standard normal by Box-Muller (one of the pair; 1 - u keeps log finite).
+  double Gaussian() {
+    const double radius = std::sqrt(-2.0 * std::log(1.0 - Uniform()));
+    return radius * std::cos(6.283185307179586 * Uniform());
   }
 
  private:

@@ -13,7 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "colmap_plugins/util/error.h"
-#include "sim/json_fields.h"
+#include "colmap_plugins/util/json_fields.h"
 #include "sim/random.h"
 
 namespace uw::sim {
@@ -107,14 +107,15 @@ struct SpotLight {
 };
 
 // Everything one frame's samples share. Light reaches a point from each
-// emitter through ForEachIncidence; a new kind of emitter (laser beams) adds
-// its term there, and surfaces and particles see it at once.
+// emitter (the lamp, laser beams) through ForEachIncidence, so surfaces and
+// particles see every emitter alike.
 class FrameShader {
  public:
   FrameShader(const RayCaster& caster, const Texture& texture,
               const RenderOptions& options,
               const Eigen::Matrix3d& world_from_cam_rotation,
-              const Eigen::Vector3d& camera_in_world)
+              const Eigen::Vector3d& camera_in_world,
+              const Rigid3d& cam_from_world, const FrameOptions& frame_options)
       : texture_(texture),
         attenuation_(options.water.attenuation_per_m),
         veil_(options.water.backscatter_strength *
@@ -136,6 +137,9 @@ class FrameShader {
     spot.cos_outer = std::cos(spot.outer_angle);
     spot.intensity = light.intensity;
     spots_.push_back(spot);
+    for (const Laser& laser : frame_options.lasers) {
+      beams_.emplace_back(laser, frame_options.optics, cam_from_world);
+    }
   }
 
   const Eigen::Vector3d& Veil() const { return veil_; }
@@ -175,6 +179,28 @@ class FrameShader {
               Transmission(distance),
           shadow_ray, distance - offset);
     }
+    for (const LaserBeam& beam : beams_) {
+      double along = 0.0;
+      const double irradiance = beam.Irradiance(point, &along);
+      if (irradiance == 0.0) continue;
+      // The beam's light travels along its axis (its divergence is
+      // milliradians), so it reaches the point unless something lies
+      // between the point and the laser's plane along that axis.
+      Ray shadow_ray;
+      shadow_ray.direction = -beam.direction_in_world;
+      const double cos_incidence =
+          surface_normal == nullptr ? 1.0
+                                    : surface_normal->dot(shadow_ray.direction);
+      if (cos_incidence <= 0.0) continue;
+      const double offset = surface_normal == nullptr ? 0.0 : surface_epsilon_;
+      shadow_ray.origin =
+          surface_normal == nullptr
+              ? point
+              : Eigen::Vector3d(point + offset * *surface_normal);
+      add((irradiance * cos_incidence) *
+              beam.colour.cwiseProduct(Transmission(along)),
+          shadow_ray, std::max(0.0, along - offset));
+    }
   }
 
   // What a surface hit by a camera ray sends to the camera, split as
@@ -201,6 +227,7 @@ class FrameShader {
   Eigen::Vector3d veil_;
   double surface_epsilon_;
   std::vector<SpotLight> spots_;
+  std::vector<LaserBeam> beams_;
 };
 
 // What the samples of one frame share with the row that renders them.
@@ -701,7 +728,14 @@ Renderer::Renderer(const RayCaster& caster, const Texture& texture,
 }
 
 RenderedImage Renderer::Render(const Rigid3d& cam_from_world, uint64_t seed,
-                               uint64_t image_index) const {
+                               uint64_t image_index,
+                               const FrameOptions& frame_options) const {
+  frame_options.optics.Check();
+  if (!(frame_options.gain_factor > 0.0 &&
+        std::isfinite(frame_options.gain_factor))) {
+    throw ErrorAt("Renderer: frame gain_factor = ", frame_options.gain_factor,
+                  ", expected finite and > 0");
+  }
   const int width = static_cast<int>(camera_.width);
   const int height = static_cast<int>(camera_.height);
   FrameRays frame;
@@ -713,8 +747,8 @@ RenderedImage Renderer::Render(const Rigid3d& cam_from_world, uint64_t seed,
   frame.camera_in_world =
       -(frame.world_from_cam_rotation * cam_from_world.translation);
   const FrameShader shader(*caster_, *texture_, options_,
-                           frame.world_from_cam_rotation,
-                           frame.camera_in_world);
+                           frame.world_from_cam_rotation, frame.camera_in_world,
+                           cam_from_world, frame_options);
 
   RenderedImage rendered;
   rendered.depth_m.create(height, width, CV_64F);
@@ -737,6 +771,7 @@ RenderedImage Renderer::Render(const Rigid3d& cam_from_world, uint64_t seed,
   }
 
   const ToneCurve encode(sensor.srgb);
+  const double gain = sensor.gain * frame_options.gain_factor;
   rendered.image.create(height, width, sensor.rgb ? CV_8UC3 : CV_8UC1);
   tbb::parallel_for(
       tbb::blocked_range<int>(0, height),
@@ -746,7 +781,7 @@ RenderedImage Renderer::Render(const Rigid3d& cam_from_world, uint64_t seed,
           for (int col = 0; col < width; ++col) {
             const size_t pixel = static_cast<size_t>(row) * width + col;
             const Eigen::Vector3d linear =
-                (sensor.gain * vignetting_[pixel]) * radiance[pixel];
+                (gain * vignetting_[pixel]) * radiance[pixel];
             Eigen::Vector3d noise = Eigen::Vector3d::Zero();
             if (sensor.noise_sigma > 0.0) {
               CounterRng rng(seed, image_index, Stream::kNoise, pixel);
@@ -787,9 +822,10 @@ RenderedImage Renderer::Render(const Rigid3d& cam_from_world, uint64_t seed,
 RenderedImage RenderImage(const RayCaster& caster, const Texture& texture,
                           const Camera& camera, const Rigid3d& cam_from_world,
                           const RenderOptions& options, uint64_t seed,
-                          uint64_t image_index) {
+                          uint64_t image_index,
+                          const FrameOptions& frame_options) {
   return Renderer(caster, texture, camera, options)
-      .Render(cam_from_world, seed, image_index);
+      .Render(cam_from_world, seed, image_index, frame_options);
 }
 
 }  // namespace uw::sim

@@ -28,6 +28,7 @@
 #include <opencv2/core.hpp>
 
 #include "colmap_plugins/scene/model.h"
+#include "sim/laser.h"
 #include "sim/ray_caster.h"
 #include "sim/texture.h"
 
@@ -102,6 +103,13 @@ void from_json(const nlohmann::json& json, SensorOptions& options);
 void to_json(nlohmann::json& json, const RenderOptions& options);
 void from_json(const nlohmann::json& json, RenderOptions& options);
 
+// What may change from one frame of a camera to the next besides its pose.
+struct FrameOptions {
+  std::vector<Laser> lasers;  // switched on, in the camera frame
+  BeamOptics optics;
+  double gain_factor = 1.0;  // multiplies the sensor's gain
+};
+
 struct RenderedImage {
   // CV_8UC3 in OpenCV's BGR order, or CV_8UC1 when the sensor is not rgb.
   cv::Mat image;
@@ -128,8 +136,11 @@ class Renderer {
   Renderer(const RayCaster& caster, const Texture& texture, Camera camera,
            RenderOptions options);
 
+  // `image_index` keys the frame's noise and marine snow: give every frame
+  // of a survey its own.
   RenderedImage Render(const Rigid3d& cam_from_world, uint64_t seed,
-                       uint64_t image_index) const;
+                       uint64_t image_index,
+                       const FrameOptions& frame_options = {}) const;
 
   const Camera& camera() const { return camera_; }
   const RenderOptions& options() const { return options_; }
@@ -158,6 +169,7 @@ class Renderer {
 RenderedImage RenderImage(const RayCaster& caster, const Texture& texture,
                           const Camera& camera, const Rigid3d& cam_from_world,
                           const RenderOptions& options, uint64_t seed,
-                          uint64_t image_index);
+                          uint64_t image_index,
+                          const FrameOptions& frame_options = {});
 
 }  // namespace uw::sim

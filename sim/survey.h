@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct World;
 enum class SurveyKind {
   kLawnmower,   // overlapping back-and-forth passes over the survey area
   kSinglePass,  // one long sequential pass along the survey axis (doming)
+  kMultiDive,   // lawnmowers over overlapping parts of the area, crossing
+  kVideo,       // frames at a fixed rate along a continuous lawnmower track
+  kViews,       // a pitch x roll grid of views of one surface point (thesis)
 };
 std::string SurveyKindName(SurveyKind kind);
 SurveyKind SurveyKindFromName(const std::string& name);  // throws uw::Error
@@ -55,6 +59,46 @@ struct SurveyOptions {
   // 0: no limit; otherwise the survey stops after this many images.
   int max_images = 0;
 
+  // multi_dive: the survey area is cut along its longer axis into
+  // num_dives parts, each sharing dive_overlap of its area with the next;
+  // dive 1 flies its lines along the survey axis, dive 2 across it (at
+  // 90 deg), dive 3 along again, ... A dive starts dive_gap_s after the
+  // last image of the one before.
+  int num_dives = 2;
+  double dive_overlap = 0.4;
+  double dive_gap_s = 3600.0;
+
+  // video: frames every 1 / frame_rate_hz seconds along a continuous
+  // lawnmower track over the survey area: lines joined by half-circle turns
+  // (floor) or by vertical moves (wall; the vehicle reverses along the wall
+  // to keep its camera on it). Frames of a turn carry the pass of the line
+  // they leave; the jitter above is drawn afresh for every frame.
+  double frame_rate_hz = 2.0;
+
+  // views: the camera at views_distance_m from a surface point, its
+  // principal ray through the point, tilted by every pitch and roll of
+  // -views_max_angle_deg, ..., +views_max_angle_deg in views_step_deg steps
+  // (17 x 17 = 289 views by default, as in the thesis). At pitch = roll = 0
+  // the optical axis is anti-parallel to the surface normal at the point:
+  // the area-weighted mean normal of the triangles whose centroids lie
+  // within views_normal_radius_m of it and that face the survey side (a
+  // plane fitted to the scene around the point, not the facet it falls
+  // on). Pitch turns the camera about its -x axis, roll about its -y axis,
+  // applied in that order to the 0/0 view: with the down-looking mount on
+  // a level floor they are the vehicle's pitch and roll. Views are taken
+  // pitch by pitch (station.pass = pitch index), roll back and forth.
+  // The point is views_target (world frame) if set, otherwise the first
+  // surface met coming from the water along the line through the world's
+  // survey_origin along survey_normal (the floor under or over a
+  // seafloor's mean height, the top of the vent). The grid is exact
+  // unless views_jitter applies the vehicle jitter above.
+  double views_distance_m = 3.0;
+  double views_max_angle_deg = 40.0;
+  double views_step_deg = 5.0;
+  double views_normal_radius_m = 0.5;
+  std::optional<Eigen::Vector3d> views_target;
+  bool views_jitter = false;
+
   void Check() const;
 };
 void to_json(nlohmann::json& json, const SurveyOptions& options);
@@ -85,6 +129,8 @@ Rigid3d VehicleFromCam(const World& world, const SurveyOptions& options);
 // Plans the stations of a survey of `world` seen through `camera`. The
 // image footprint, and so the spacing, follows from the camera's focal
 // length and size at the stand-off distance. Deterministic for a seed.
+// Throws uw::Error for views whose target cannot be found on the mesh or
+// whose vehicle attitude would pitch beyond 85 deg.
 std::vector<SurveyStation> PlanSurvey(SurveyKind kind, const World& world,
                                       const Camera& camera,
                                       const SurveyOptions& options,

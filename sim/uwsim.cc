@@ -10,6 +10,7 @@
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
 #include "sim/generate.h"
+#include "sim/survey_map.h"
 
 int main(int argc, char** argv) {
   CLI::App app(
@@ -21,7 +22,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   CLI::App* generate = app.add_subcommand(
       "generate",
-      "Render a survey of a world; writes images/, nav.csv and truth/ "
+      "Render a survey of a world; writes images/, laser_images/, nav.csv, "
+      "lasers.json and truth/ "
       "(docs/uwsim.md).\n\nExample:\n  uwsim generate --world seafloor "
       "--survey lawnmower --out sim --seed 1 [--config sim.json]");
   std::string world = "seafloor";
@@ -31,9 +33,13 @@ int main(int argc, char** argv) {
   uint64_t seed = 1;
   int max_images = -1;
   int num_threads = -1;
-  generate->add_option("--world", world, "seafloor | vent | scarp")
+  generate
+      ->add_option("--world", world,
+                   "seafloor | vent | scarp | breakwater | canyon")
       ->capture_default_str();
-  generate->add_option("--survey", survey, "lawnmower | single_pass")
+  generate
+      ->add_option("--survey", survey,
+                   "lawnmower | single_pass | multi_dive | video | views")
       ->capture_default_str();
   generate->add_option("--out", out, "Output folder (new or empty)")
       ->required();
@@ -48,10 +54,42 @@ int main(int argc, char** argv) {
                    "Threads to render with (-1: all cores); the output "
                    "does not depend on it")
       ->capture_default_str();
+  CLI::App* map_command = app.add_subcommand(
+      "map",
+      "Draw a top view of an uwsim output folder: the mesh as a hillshaded "
+      "height map, the true camera centres by dive, the true vehicle track "
+      "and the navigation track (docs/uwsim.md).\n\nExample:\n  uwsim map "
+      "--sim sim --out sim_map.png [--width 1600]");
+  std::string map_sim;
+  std::string map_out;
+  uw::sim::SurveyMapOptions map_options;
+  map_command->add_option("--sim", map_sim, "Output folder of uwsim generate")
+      ->required();
+  map_command
+      ->add_option("--out", map_out, "Image to write: .png, .jpg or .jpeg")
+      ->required();
+  map_command
+      ->add_option("--width", map_options.width_px,
+                   "Figure width in pixels (800-8000); the height follows "
+                   "the survey's aspect ratio")
+      ->capture_default_str();
+  map_command->add_option("--title", map_options.title,
+                          "Title above the map (ASCII)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return app.exit(error) == 0 ? 0 : 2;
+  }
+  if (map_command->parsed()) {
+    try {
+      uw::sim::WriteSurveyMap(map_sim, map_out, map_options);
+      std::cout << "[uwsim] map of " << map_sim << " written to " << map_out
+                << std::endl;
+    } catch (const std::exception& error) {
+      std::cerr << "ERROR: " << error.what() << std::endl;
+      return 1;
+    }
+    return 0;
   }
   try {
     uw::sim::SimConfig config;
@@ -94,7 +132,8 @@ int main(int argc, char** argv) {
                       << " images (" << seconds() << " s)" << std::endl;
           }
         });
-    std::cout << "[uwsim] " << summary.num_images << " images of "
+    std::cout << "[uwsim] " << summary.num_images << " images and "
+              << summary.num_laser_images << " laser images (+ auxiliaries) of "
               << uw::sim::WorldKindName(config.world) << "/"
               << uw::sim::SurveyKindName(config.survey) << " ("
               << summary.num_triangles << " triangles) written to " << out

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -44,6 +45,26 @@ constexpr double kDomeTip = 0.12;
 
 // Horizontal margin around the chimney included in the vent's survey area.
 constexpr double kVentSurveyMargin = 3.0;
+
+// Armour blocks: each layer is this many block sizes thick (blocks nest
+// into the voids of the layer below); block centres wander by this
+// fraction of a grid cell; off-diagonal shear of the block shape; the
+// roughness' longest wavelength in block sizes.
+constexpr double kBlockLayerThickness = 0.8;
+constexpr double kBlockJitter = 0.8;
+constexpr double kBlockShear = 0.12;
+constexpr double kBlockRoughnessWavelength = 0.25;
+// Blocks' sides (and the crevices between them) are no steeper than this.
+constexpr double kBlockMaxSideSlopeDeg = 72.0;
+
+// Canyon: vertical extent of the rounding at the walls' foot and rim (m),
+// wavelength of the walls' height variation along the canyon (m), and
+// spacing of the polyline that approximates the axis (m; its chord error
+// is about 1 mm at the sharpest default bend).
+constexpr double kCanyonFootRounding = 1.0;
+constexpr double kCanyonRimRounding = 1.5;
+constexpr double kCanyonWallHeightWavelength = 20.0;
+constexpr double kCanyonAxisStep = 0.25;
 
 // All randomness of a world derives from its seed.
 using Random = SplitMix64Stream;
@@ -261,12 +282,21 @@ void AppendHeightGrid(const HeightGrid& grid, TriangleMesh* mesh) {
   AppendGridTriangles(first, grid.nx, grid.ny, /*wrap_u=*/false, mesh);
 }
 
+// Where a rock of some radius may lie, by its centre.
+using RockPlace = std::function<bool(const Eigen::Vector2d& centre, double)>;
+
+RockPlace OutsideDisc(double keep_out_radius) {
+  return [keep_out_radius](const Eigen::Vector2d& centre, double radius) {
+    return centre.norm() > keep_out_radius + radius;
+  };
+}
+
 // Boulders merged into a heightfield: each is a superellipsoid cap with
 // an irregular outline and a bumpy top, partly buried in the local ground,
 // and the surface is the higher of ground and rock.
 void AddRocks(const RockOptions& options,
               const std::function<double(double, double)>& ground,
-              double keep_out_radius, Random& random, HeightGrid* grid) {
+              const RockPlace& allowed, Random& random, HeightGrid* grid) {
   const GradientNoise outline_noise(random.Next());
   const GradientNoise bump_noise(random.Next());
   const double x1 = grid->x(grid->nx - 1), y1 = grid->y(grid->ny - 1);
@@ -280,14 +310,17 @@ void AddRocks(const RockOptions& options,
     const double angle = random.Uniform(0.0, 2.0 * M_PI);
     const double height = radius * random.Uniform(0.5, 1.0);
     Eigen::Vector2d centre;
-    // Redraw a centre that falls inside the keep-out disc (the vent's
-    // chimney); a few tries suffice as the disc is small.
-    for (int attempt = 0; attempt < 64; ++attempt) {
+    // Redraw a centre where the rock may not lie (the vent's chimney, off a
+    // canyon's floor): with a fraction f of the grid excluded, all 64
+    // tries fail with probability f^64, 1e-7 for the default canyon's
+    // ~78 %.
+    bool placed = false;
+    for (int attempt = 0; attempt < 64 && !placed; ++attempt) {
       centre = Eigen::Vector2d(random.Uniform(grid->x0 + radius, x1 - radius),
                                random.Uniform(grid->y0 + radius, y1 - radius));
-      if (centre.norm() > keep_out_radius + radius) break;
+      placed = allowed(centre, radius);
     }
-    if (centre.norm() <= keep_out_radius + radius) continue;
+    if (!placed) continue;
     const double base = ground(centre.x(), centre.y()) - 0.25 * height;
     const double cos_a = std::cos(angle), sin_a = std::sin(angle);
     const double bump_wavelength =
@@ -328,6 +361,37 @@ void AddRocks(const RockOptions& options,
                        bump_wavelength);
         grid->at(i, j) = std::max(grid->at(i, j), base + height * cap + bumps);
       }
+    }
+  }
+}
+
+// Raises every vertex of the grid to at least the cone of slope max_slope
+// (rise over run) hanging from each other vertex, so that no slope is
+// steeper: two raster passes propagate the cones over 8-neighbours
+// (chamfer distances, within 8 % of Euclidean). Cliffs, which a
+// heightfield renders as stair-stepped one-cell walls, become skirts a
+// few cells wide.
+void LimitSlope(double max_slope, HeightGrid* grid) {
+  const double drop_x = max_slope * grid->dx, drop_y = max_slope * grid->dy;
+  const double drop_xy = max_slope * std::hypot(grid->dx, grid->dy);
+  const auto raise = [grid](int i, int j, int ni, int nj, double drop) {
+    if (ni < 0 || ni >= grid->nx || nj < 0 || nj >= grid->ny) return;
+    grid->at(i, j) = std::max(grid->at(i, j), grid->at(ni, nj) - drop);
+  };
+  for (int j = 0; j < grid->ny; ++j) {
+    for (int i = 0; i < grid->nx; ++i) {
+      raise(i, j, i - 1, j, drop_x);
+      raise(i, j, i - 1, j - 1, drop_xy);
+      raise(i, j, i, j - 1, drop_y);
+      raise(i, j, i + 1, j - 1, drop_xy);
+    }
+  }
+  for (int j = grid->ny - 1; j >= 0; --j) {
+    for (int i = grid->nx - 1; i >= 0; --i) {
+      raise(i, j, i + 1, j, drop_x);
+      raise(i, j, i + 1, j + 1, drop_xy);
+      raise(i, j, i, j + 1, drop_y);
+      raise(i, j, i - 1, j + 1, drop_xy);
     }
   }
 }
@@ -381,7 +445,7 @@ World MakeSeafloor(const SeafloorOptions& options, Random& random) {
     for (int i = 0; i < grid.nx; ++i)
       grid.at(i, j) = ground(grid.x(i), grid.y(j));
   }
-  AddRocks(options.rocks, ground, 0.0, random, &grid);
+  AddRocks(options.rocks, ground, OutsideDisc(0.0), random, &grid);
 
   World world;
   world.name = "seafloor";
@@ -582,7 +646,8 @@ World MakeVent(const VentOptions& options, Random& random) {
     }
   }
   const Chimney chimney(options, ground(0.0, 0.0), lowest - 0.3, random);
-  AddRocks(options.ground_rocks, ground, foot_radius, random, &grid);
+  AddRocks(options.ground_rocks, ground, OutsideDisc(foot_radius), random,
+           &grid);
 
   World world;
   world.name = "vent";
@@ -713,6 +778,391 @@ World MakeScarp(const ScarpOptions& options, Random& random) {
   return world;
 }
 
+// Signed horizontal distance from the breakwater's crest rectangle
+// [-half_length, half_length] x [-half_width, half_width]: negative inside.
+// Outside, *away is the unit direction away from the rectangle.
+double CrestDistance(double x, double y, double half_length, double half_width,
+                     Eigen::Vector2d* away = nullptr) {
+  const double dx = std::abs(x) - half_length;
+  const double dy = std::abs(y) - half_width;
+  const Eigen::Vector2d outside(std::copysign(std::max(dx, 0.0), x),
+                                std::copysign(std::max(dy, 0.0), y));
+  const double distance = outside.norm();
+  if (distance == 0.0) return std::max(dx, dy);
+  if (away) *away = outside / distance;
+  return distance;
+}
+
+// An armour block: the superellipsoid |u|^6 + |v|^6 + |w|^6 <= 1 in unit
+// coordinates u = unit_from_world * (p - centre).
+struct ArmourBlock {
+  Eigen::Vector3d centre;
+  Eigen::Matrix3d unit_from_world;
+  Eigen::Vector3d reach;  // half extents of its bounding box in the world
+};
+
+// Height of the block's upper surface on the vertical line through (x, y),
+// if the line meets the block. Along the line, u is linear in z and
+// f(z) = sum u_i^6 - 1 convex, so Newton's method started above the upper
+// root, at the top of the bounding parallelepiped (|u_i| <= 1), descends
+// monotonically onto it; a slope f' <= 0 or falling below the
+// parallelepiped means the line passes the block.
+std::optional<double> BlockTop(const ArmourBlock& block, double x, double y) {
+  const Eigen::Vector3d u0 =
+      block.unit_from_world *
+      (Eigen::Vector3d(x, y, 0.0) - block.centre);         // u at z = 0
+  const Eigen::Vector3d w = block.unit_from_world.col(2);  // du/dz
+  double z_low = -std::numeric_limits<double>::infinity();
+  double z_high = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    if (w[i] == 0.0) {
+      if (std::abs(u0[i]) > 1.0) return std::nullopt;
+      continue;
+    }
+    const double a = (-1.0 - u0[i]) / w[i], b = (1.0 - u0[i]) / w[i];
+    z_low = std::max(z_low, std::min(a, b));
+    z_high = std::min(z_high, std::max(a, b));
+  }
+  if (!(z_low < z_high)) return std::nullopt;
+  double z = z_high;
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    double f = -1.0, slope = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double u = u0[i] + z * w[i];
+      const double u2 = u * u, u5 = u2 * u2 * u;
+      f += u5 * u;
+      slope += 6.0 * w[i] * u5;
+    }
+    if (slope <= 0.0) return std::nullopt;
+    const double step = f / slope;
+    z -= step;
+    if (z < z_low) return std::nullopt;
+    if (step < 1e-7) break;
+  }
+  return z;
+}
+
+// Armour blocks laid on the design surface, layer by layer from the core
+// outwards: one jittered grid in plan per layer, each shifted by half a
+// cell, of cells block_size_m * cos(slope) wide (about one block per block
+// area on the slopes, a denser packing on the crest).
+std::vector<ArmourBlock> LayArmour(const BreakwaterOptions& options,
+                                   Random& random) {
+  const double slope = options.slope_deg * kDegToRad;
+  const double run = options.height_m / std::tan(slope);
+  const double half_length = 0.5 * options.length_m;
+  const double half_width = 0.5 * options.crest_width_m;
+  const double size = options.block_size_m;
+  const double thickness = kBlockLayerThickness * size;
+  const double cell = size * std::cos(slope);
+  const double tilt = options.block_tilt_deg * kDegToRad;
+  // Blocks reach a little beyond the toe of the design profile.
+  const double reach = run + 0.3 * size;
+  const int nx =
+      static_cast<int>(std::ceil(2.0 * (half_length + reach) / cell));
+  const int ny = static_cast<int>(std::ceil(2.0 * (half_width + reach) / cell));
+  std::vector<ArmourBlock> blocks;
+  for (int layer = 0; layer < options.block_layers; ++layer) {
+    const double shift = (layer % 2 == 0 ? 0.0 : 0.5) * cell;
+    // Depth of the layer's middle below the design surface.
+    const double depth = (options.block_layers - layer - 0.5) * thickness;
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        const double x =
+            -half_length - reach + shift +
+            (i + 0.5 + kBlockJitter * random.Uniform(-0.5, 0.5)) * cell;
+        const double y =
+            -half_width - reach + shift +
+            (j + 0.5 + kBlockJitter * random.Uniform(-0.5, 0.5)) * cell;
+        const double yaw = random.Uniform(0.0, 2.0 * M_PI);
+        const double tilt_azimuth = random.Uniform(0.0, 2.0 * M_PI);
+        const double tilt_angle = tilt * random.Uniform(-1.0, 1.0);
+        Eigen::Vector3d half_extents;
+        for (int k = 0; k < 3; ++k) {
+          half_extents[k] =
+              0.5 * size *
+              (1.0 + options.block_size_variation * random.Uniform(-1.0, 1.0));
+        }
+        Eigen::Matrix3d shear = Eigen::Matrix3d::Identity();
+        for (int r = 0; r < 3; ++r) {
+          for (int c = 0; c < 3; ++c) {
+            if (r != c) shear(r, c) = kBlockShear * random.Uniform(-1.0, 1.0);
+          }
+        }
+        Eigen::Vector2d away = Eigen::Vector2d::Zero();
+        const double distance =
+            CrestDistance(x, y, half_length, half_width, &away);
+        if (distance > reach) continue;
+        const Eigen::Vector3d surface(
+            x, y, options.height_m - std::max(distance, 0.0) * std::tan(slope));
+        const Eigen::Vector3d normal =
+            distance > 0.0 ? Eigen::Vector3d(std::tan(slope) * away.x(),
+                                             std::tan(slope) * away.y(), 1.0)
+                                 .normalized()
+                           : Eigen::Vector3d::UnitZ();
+        const Eigen::Matrix3d world_from_block =
+            (Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(),
+                                                normal) *
+             Eigen::AngleAxisd(tilt_angle,
+                               Eigen::Vector3d(std::cos(tilt_azimuth),
+                                               std::sin(tilt_azimuth), 0.0)) *
+             Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()))
+                .toRotationMatrix();
+        const Eigen::Matrix3d world_from_unit =
+            world_from_block * shear * half_extents.asDiagonal();
+        ArmourBlock block;
+        block.centre = surface - depth * normal;
+        block.unit_from_world = world_from_unit.inverse();
+        block.reach = world_from_unit.cwiseAbs().rowwise().sum();
+        blocks.push_back(block);
+      }
+    }
+  }
+  return blocks;
+}
+
+World MakeBreakwater(const BreakwaterOptions& options, Random& random) {
+  const double slope = options.slope_deg * kDegToRad;
+  const double run = options.height_m / std::tan(slope);
+  const double half_length = 0.5 * options.length_m;
+  const double half_width = 0.5 * options.crest_width_m;
+  const Relief relief(options.relief, options.vertex_spacing_m, random);
+  const Fbm roughness(random, kBlockRoughnessWavelength * options.block_size_m,
+                      kVerticesPerFinestWavelength * options.vertex_spacing_m);
+  const auto floor = [&relief](double x, double y) {
+    return relief(Eigen::Vector3d(x, y, 0.0));
+  };
+  const double x_extent = half_length + run + options.apron_width_m;
+  const double y_extent = half_width + run + options.apron_width_m;
+  // The seafloor and the core: the design profile moved inwards by the
+  // armour's thickness (horizontally by thickness / sin(slope) on the
+  // slopes), as rough as the seafloor; the core shows in the voids between
+  // blocks.
+  const double armour =
+      options.block_layers * kBlockLayerThickness * options.block_size_m;
+  HeightGrid grid(-x_extent, -y_extent, 2.0 * x_extent, 2.0 * y_extent,
+                  options.vertex_spacing_m);
+  for (int j = 0; j < grid.ny; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      const double x = grid.x(i), y = grid.y(j);
+      const double core =
+          std::min(options.height_m - armour,
+                   (run - armour / std::sin(slope) -
+                    CrestDistance(x, y, half_length, half_width)) *
+                       std::tan(slope));
+      grid.at(i, j) = floor(x, y) + std::max(core, 0.0);
+    }
+  }
+  // The blocks are drawn before the rocks, so that changing the rocks
+  // leaves them as they were. Rocks lie off the mound, so merging them
+  // after the core changes nothing.
+  const std::vector<ArmourBlock> blocks = LayArmour(options, random);
+  AddRocks(
+      options.rocks, floor,
+      [&](const Eigen::Vector2d& centre, double radius) {
+        return CrestDistance(centre.x(), centre.y(), half_length, half_width) >
+               run + radius;
+      },
+      random, &grid);
+
+  for (const ArmourBlock& block : blocks) {
+    const int i0 = std::max(
+        0, static_cast<int>(std::floor(
+               (block.centre.x() - block.reach.x() - grid.x0) / grid.dx)));
+    const int i1 = std::min(
+        grid.nx - 1,
+        static_cast<int>(std::ceil(
+            (block.centre.x() + block.reach.x() - grid.x0) / grid.dx)));
+    const int j0 = std::max(
+        0, static_cast<int>(std::floor(
+               (block.centre.y() - block.reach.y() - grid.y0) / grid.dy)));
+    const int j1 = std::min(
+        grid.ny - 1,
+        static_cast<int>(std::ceil(
+            (block.centre.y() + block.reach.y() - grid.y0) / grid.dy)));
+    for (int j = j0; j <= j1; ++j) {
+      for (int i = i0; i <= i1; ++i) {
+        const std::optional<double> top = BlockTop(block, grid.x(i), grid.y(j));
+        if (!top) continue;
+        const double z =
+            *top + options.block_roughness_m *
+                       roughness(Eigen::Vector3d(grid.x(i), grid.y(j), *top));
+        grid.at(i, j) = std::max(grid.at(i, j), z);
+      }
+    }
+  }
+
+  LimitSlope(std::tan(kBlockMaxSideSlopeDeg * kDegToRad), &grid);
+
+  World world;
+  world.name = "breakwater";
+  AppendHeightGrid(grid, &world.mesh);
+  world.survey_origin =
+      Eigen::Vector3d(0.0, -half_width - 0.5 * run, 0.5 * options.height_m);
+  world.survey_normal = Eigen::Vector3d(0.0, -std::sin(slope), std::cos(slope));
+  world.survey_along = Eigen::Vector3d::UnitX();
+  world.survey_length = options.length_m;
+  world.survey_width = options.height_m / std::sin(slope);
+  return world;
+}
+
+// Polynomial smooth minimum (Quilez): min(a, b) with the corner rounded
+// over a band k wide; C1.
+double SmoothMin(double a, double b, double k) {
+  const double h = std::max(k - std::abs(a - b), 0.0) / k;
+  return std::min(a, b) - 0.25 * k * h * h;
+}
+
+// The canyon's axis y = c(x): two sines of random phase, the second 2.1
+// times shorter, whose amplitudes sum to meander_amplitude_m; and the
+// signed horizontal distance from it, via a polyline.
+class CanyonAxis {
+ public:
+  CanyonAxis(const CanyonOptions& options, Random& random)
+      : amplitude_(options.meander_amplitude_m),
+        wavenumber_(2.0 * M_PI / options.meander_wavelength_m),
+        phase_long_(random.Uniform(0.0, 2.0 * M_PI)),
+        phase_short_(random.Uniform(0.0, 2.0 * M_PI)) {
+    // Far enough beyond the ends that every grid vertex finds its nearest
+    // axis point on the polyline.
+    x_first_ = -0.5 * (options.length_m + options.width_m);
+    const int count = static_cast<int>(
+        std::ceil((options.length_m + options.width_m) / kCanyonAxisStep));
+    for (int k = 0; k <= count; ++k) {
+      const double x = x_first_ + k * kCanyonAxisStep;
+      points_.emplace_back(x, y(x));
+    }
+  }
+
+  double y(double x) const {
+    return amplitude_ * (0.75 * std::sin(wavenumber_ * x + phase_long_) +
+                         0.25 * std::sin(2.1 * wavenumber_ * x + phase_short_));
+  }
+
+  // Positive on the +y side.
+  double SignedDistance(double x, double y) const {
+    const Eigen::Vector2d p(x, y);
+    const int last = static_cast<int>(points_.size()) - 2;
+    const int start = std::clamp(
+        static_cast<int>(std::floor((x - x_first_) / kCanyonAxisStep)), 0,
+        last);
+    double best = std::numeric_limits<double>::infinity();
+    double sign = 1.0;
+    const auto visit = [&](int k) {
+      const Eigen::Vector2d a = points_[k], d = points_[k + 1] - a;
+      const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      const Eigen::Vector2d offset = p - (a + t * d);
+      const double distance = offset.norm();
+      if (distance < best) {
+        best = distance;
+        sign = d.x() * offset.y() - d.y() * offset.x() >= 0.0 ? 1.0 : -1.0;
+      }
+    };
+    // Segments further away in x than the best distance cannot be nearer.
+    for (int k = start; k >= 0 && x - points_[k + 1].x() < best; --k) visit(k);
+    for (int k = start + 1; k <= last && points_[k].x() - x < best; ++k) {
+      visit(k);
+    }
+    return sign * best;
+  }
+
+ private:
+  double amplitude_, wavenumber_, phase_long_, phase_short_;
+  double x_first_;
+  std::vector<Eigen::Vector2d> points_;
+};
+
+World MakeCanyon(const CanyonOptions& options, Random& random) {
+  const CanyonAxis axis(options, random);
+  const Relief relief(options.relief, options.vertex_spacing_m, random);
+  const Fbm wall_noise(random, options.wall_relief_wavelength_m,
+                       kVerticesPerFinestWavelength * options.vertex_spacing_m);
+  const Fbm height_noise_plus_y(random, kCanyonWallHeightWavelength,
+                                kCanyonWallHeightWavelength);
+  const Fbm height_noise_minus_y(random, kCanyonWallHeightWavelength,
+                                 kCanyonWallHeightWavelength);
+  const double half_floor = 0.5 * options.floor_width_m;
+  const double tan_slope = std::tan(options.wall_slope_deg * kDegToRad);
+  // Height of the profile at distance e from the axis under a wall of
+  // height wall: floor, wall, rim, with a rounded foot and rim.
+  const auto profile = [&](double e, double wall) {
+    const double rising = (e - half_floor) * tan_slope;
+    return -SmoothMin(0.0, -SmoothMin(wall, rising, kCanyonRimRounding),
+                      kCanyonFootRounding);
+  };
+  const auto terrain = [&](double x, double y) {
+    const double e = axis.SignedDistance(x, y);
+    const Fbm& height_noise =
+        e >= 0.0 ? height_noise_plus_y : height_noise_minus_y;
+    const double wall =
+        options.wall_height_m +
+        options.wall_height_variation_m *
+            std::tanh(height_noise(Eigen::Vector3d(x, 0.0, 0.0)));
+    const double nominal = profile(std::abs(e), wall);
+    const Eigen::Vector3d p(x, y, nominal);
+    // The wall moves horizontally by up to wall_relief_m; the floor and
+    // the rim plateau are flat, so the wander changes nothing there and
+    // its noise is not evaluated.
+    const double rounded_floor = half_floor - kCanyonFootRounding / tan_slope;
+    const double rounded_rim =
+        half_floor + (wall + kCanyonRimRounding) / tan_slope;
+    double wandered = std::abs(e);
+    if (std::abs(e) + options.wall_relief_m > rounded_floor &&
+        std::abs(e) - options.wall_relief_m < rounded_rim) {
+      wandered -= options.wall_relief_m * std::tanh(wall_noise(p));
+    }
+    return profile(wandered, wall) + relief(p);
+  };
+  HeightGrid grid(-0.5 * options.length_m, -0.5 * options.width_m,
+                  options.length_m, options.width_m, options.vertex_spacing_m);
+  for (int j = 0; j < grid.ny; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      grid.at(i, j) = terrain(grid.x(i), grid.y(j));
+    }
+  }
+  AddRocks(
+      options.rocks, terrain,
+      [&](const Eigen::Vector2d& centre, double radius) {
+        return std::abs(axis.SignedDistance(centre.x(), centre.y())) +
+                   0.5 * radius <=
+               half_floor;
+      },
+      random, &grid);
+
+  // The survey strip: the axis' range in y over the grid, narrowed by it
+  // and by the walls' wander.
+  double axis_min = std::numeric_limits<double>::infinity();
+  double axis_max = -axis_min;
+  for (int i = 0; i < grid.nx; ++i) {
+    axis_min = std::min(axis_min, axis.y(grid.x(i)));
+    axis_max = std::max(axis_max, axis.y(grid.x(i)));
+  }
+  const double strip_y = 0.5 * (axis_min + axis_max);
+  const double strip_width = options.floor_width_m -
+                             2.0 * options.wall_relief_m -
+                             (axis_max - axis_min);
+  double sum_z = 0.0;
+  int count = 0;
+  for (int j = 0; j < grid.ny; ++j) {
+    if (std::abs(grid.y(j) - strip_y) > 0.5 * strip_width) continue;
+    for (int i = 0; i < grid.nx; ++i) {
+      sum_z += grid.at(i, j);
+      ++count;
+    }
+  }
+
+  World world;
+  world.name = "canyon";
+  AppendHeightGrid(grid, &world.mesh);
+  world.survey_origin =
+      Eigen::Vector3d(0.0, strip_y, count > 0 ? sum_z / count : 0.0);
+  world.survey_normal = Eigen::Vector3d::UnitZ();
+  world.survey_along = Eigen::Vector3d::UnitX();
+  world.survey_length = options.length_m;
+  world.survey_width = strip_width;
+  return world;
+}
+
 // ---------------------------------------------------------------------------
 // Option checks.
 
@@ -817,6 +1267,40 @@ void VisitScarp(Options& o, Visitor& v) {
 }
 
 template <typename Options, typename Visitor>
+void VisitBreakwater(Options& o, Visitor& v) {
+  v.Field("length_m", o.length_m);
+  v.Field("height_m", o.height_m);
+  v.Field("crest_width_m", o.crest_width_m);
+  v.Field("slope_deg", o.slope_deg);
+  v.Field("apron_width_m", o.apron_width_m);
+  v.Field("vertex_spacing_m", o.vertex_spacing_m);
+  v.Section("relief", o.relief, [](auto& s, auto& w) { VisitRelief(s, w); });
+  v.Section("rocks", o.rocks, [](auto& s, auto& w) { VisitRocks(s, w); });
+  v.Field("block_size_m", o.block_size_m);
+  v.Field("block_size_variation", o.block_size_variation);
+  v.Field("block_layers", o.block_layers);
+  v.Field("block_tilt_deg", o.block_tilt_deg);
+  v.Field("block_roughness_m", o.block_roughness_m);
+}
+
+template <typename Options, typename Visitor>
+void VisitCanyon(Options& o, Visitor& v) {
+  v.Field("length_m", o.length_m);
+  v.Field("width_m", o.width_m);
+  v.Field("floor_width_m", o.floor_width_m);
+  v.Field("wall_height_m", o.wall_height_m);
+  v.Field("wall_height_variation_m", o.wall_height_variation_m);
+  v.Field("wall_slope_deg", o.wall_slope_deg);
+  v.Field("meander_amplitude_m", o.meander_amplitude_m);
+  v.Field("meander_wavelength_m", o.meander_wavelength_m);
+  v.Field("wall_relief_m", o.wall_relief_m);
+  v.Field("wall_relief_wavelength_m", o.wall_relief_wavelength_m);
+  v.Field("vertex_spacing_m", o.vertex_spacing_m);
+  v.Section("relief", o.relief, [](auto& s, auto& w) { VisitRelief(s, w); });
+  v.Section("rocks", o.rocks, [](auto& s, auto& w) { VisitRocks(s, w); });
+}
+
+template <typename Options, typename Visitor>
 void VisitTexture(Options& o, Visitor& v) {
   v.Field("grain_wavelength_m", o.grain_wavelength_m);
   v.Field("grain_octaves", o.grain_octaves);
@@ -837,6 +1321,9 @@ void VisitWorld(Options& o, Visitor& v) {
             [](auto& s, auto& w) { VisitSeafloor(s, w); });
   v.Section("vent", o.vent, [](auto& s, auto& w) { VisitVent(s, w); });
   v.Section("scarp", o.scarp, [](auto& s, auto& w) { VisitScarp(s, w); });
+  v.Section("breakwater", o.breakwater,
+            [](auto& s, auto& w) { VisitBreakwater(s, w); });
+  v.Section("canyon", o.canyon, [](auto& s, auto& w) { VisitCanyon(s, w); });
   v.Section("texture", o.texture, [](auto& s, auto& w) { VisitTexture(s, w); });
 }
 
@@ -951,16 +1438,23 @@ std::string WorldKindName(WorldKind kind) {
       return "vent";
     case WorldKind::kScarp:
       return "scarp";
+    case WorldKind::kBreakwater:
+      return "breakwater";
+    case WorldKind::kCanyon:
+      return "canyon";
   }
   throw ErrorAt("WorldKindName: invalid WorldKind ", static_cast<int>(kind));
 }
 
 WorldKind WorldKindFromName(const std::string& name) {
+  std::string valid;
   for (const WorldKind kind :
-       {WorldKind::kSeafloor, WorldKind::kVent, WorldKind::kScarp}) {
+       {WorldKind::kSeafloor, WorldKind::kVent, WorldKind::kScarp,
+        WorldKind::kBreakwater, WorldKind::kCanyon}) {
     if (WorldKindName(kind) == name) return kind;
+    valid += (valid.empty() ? "" : ", ") + WorldKindName(kind);
   }
-  throw ErrorAt("unknown world \"", name, "\" (valid: seafloor, vent, scarp)");
+  throw ErrorAt("unknown world \"", name, "\" (valid: ", valid, ")");
 }
 
 void ReliefOptions::Check(const std::string& where) const {
@@ -1077,10 +1571,102 @@ void ScarpOptions::Check() const {
                  section, "vertex_spacing_m");
 }
 
+void BreakwaterOptions::Check() const {
+  const std::string section = "breakwater";
+  CheckPositive(length_m, section, "length_m");
+  CheckPositive(height_m, section, "height_m");
+  CheckNonNegative(crest_width_m, section, "crest_width_m");
+  CheckRange(slope_deg, 10.0, 60.0, section, "slope_deg");
+  CheckPositive(apron_width_m, section, "apron_width_m");
+  CheckPositive(vertex_spacing_m, section, "vertex_spacing_m");
+  relief.Check(section + ".relief");
+  rocks.Check(section + ".rocks");
+  if (rocks.count > 0 && rocks.max_diameter_m >= apron_width_m) {
+    throw ErrorAt(Field(section, "rocks.max_diameter_m"), " = ",
+                  rocks.max_diameter_m, ": rocks must fit on the apron (",
+                  apron_width_m, " m)");
+  }
+  CheckPositive(block_size_m, section, "block_size_m");
+  // Smaller blocks would not be resolved by the mesh (and would number
+  // millions).
+  if (block_size_m < kVerticesPerFinestWavelength * vertex_spacing_m) {
+    throw ErrorAt(Field(section, "block_size_m"), " = ", block_size_m,
+                  ": must span at least ", kVerticesPerFinestWavelength,
+                  " vertex spacings (",
+                  kVerticesPerFinestWavelength * vertex_spacing_m, " m)");
+  }
+  CheckRange(block_size_variation, 0.0, 0.5, section, "block_size_variation");
+  CheckRange(block_layers, 1, 4, section, "block_layers");
+  CheckRange(block_tilt_deg, 0.0, 45.0, section, "block_tilt_deg");
+  CheckNonNegative(block_roughness_m, section, "block_roughness_m");
+  const double armour = block_layers * kBlockLayerThickness * block_size_m;
+  if (height_m <= armour) {
+    throw ErrorAt(Field(section, "height_m"), " = ", height_m,
+                  ": must exceed the armour's thickness (", armour, " m for ",
+                  block_layers, " layers of ", block_size_m, " m blocks)");
+  }
+  const double run = height_m / std::tan(slope_deg * kDegToRad);
+  CheckTriangles(
+      2.0 *
+          ((length_m + 2.0 * (run + apron_width_m)) / vertex_spacing_m + 1.0) *
+          ((crest_width_m + 2.0 * (run + apron_width_m)) / vertex_spacing_m +
+           1.0),
+      section, "vertex_spacing_m");
+}
+
+void CanyonOptions::Check() const {
+  const std::string section = "canyon";
+  CheckPositive(length_m, section, "length_m");
+  CheckPositive(width_m, section, "width_m");
+  CheckPositive(floor_width_m, section, "floor_width_m");
+  CheckPositive(wall_height_m, section, "wall_height_m");
+  CheckRange(wall_height_variation_m, 0.0, 0.5 * wall_height_m, section,
+             "wall_height_variation_m");
+  CheckRange(wall_slope_deg, 30.0, 80.0, section, "wall_slope_deg");
+  CheckNonNegative(meander_amplitude_m, section, "meander_amplitude_m");
+  CheckPositive(meander_wavelength_m, section, "meander_wavelength_m");
+  CheckNonNegative(wall_relief_m, section, "wall_relief_m");
+  CheckPositive(wall_relief_wavelength_m, section, "wall_relief_wavelength_m");
+  CheckPositive(vertex_spacing_m, section, "vertex_spacing_m");
+  relief.Check(section + ".relief");
+  rocks.Check(section + ".rocks");
+  // The survey strip runs straight along x on the floor.
+  const double strip =
+      floor_width_m - 2.0 * meander_amplitude_m - 2.0 * wall_relief_m;
+  if (!(strip >= 1.0)) {
+    throw ErrorAt(Field(section, "floor_width_m"), " = ", floor_width_m,
+                  ": leaves a straight strip of ", strip,
+                  " m along the floor; must be at least ",
+                  floor_width_m - strip + 1.0,
+                  " m (2 x (meander_amplitude_m + wall_relief_m) + 1 m)");
+  }
+  if (rocks.count > 0 && rocks.max_diameter_m >= floor_width_m) {
+    throw ErrorAt(Field(section, "rocks.max_diameter_m"), " = ",
+                  rocks.max_diameter_m, ": rocks must fit on the floor");
+  }
+  const double needed =
+      floor_width_m +
+      2.0 * (meander_amplitude_m + wall_relief_m +
+             (wall_height_m + wall_height_variation_m + kCanyonRimRounding) /
+                 std::tan(wall_slope_deg * kDegToRad) +
+             1.0);
+  if (!(width_m >= needed)) {
+    throw ErrorAt(Field(section, "width_m"), " = ", width_m,
+                  ": too narrow for the canyon and 1 m of rim on each side "
+                  "(needs ",
+                  needed, " m)");
+  }
+  CheckTriangles(2.0 * (length_m / vertex_spacing_m + 1.0) *
+                     (width_m / vertex_spacing_m + 1.0),
+                 section, "vertex_spacing_m");
+}
+
 void WorldOptions::Check() const {
   seafloor.Check();
   vent.Check();
   scarp.Check();
+  breakwater.Check();
+  canyon.Check();
   texture.Check();
 }
 
@@ -1113,6 +1699,12 @@ World MakeWorld(const WorldKind kind, const WorldOptions& options,
       break;
     case WorldKind::kScarp:
       world = MakeScarp(options.scarp, geometry);
+      break;
+    case WorldKind::kBreakwater:
+      world = MakeBreakwater(options.breakwater, geometry);
+      break;
+    case WorldKind::kCanyon:
+      world = MakeCanyon(options.canyon, geometry);
       break;
   }
   world.texture =

@@ -41,21 +41,26 @@ void Generate(const fs::path& out, const std::string& flags) {
 
 TEST(Uwsim, SameSeedGivesTheSameBytesWhateverTheThreadCount) {
   const fs::path dir = FreshTestDir("uw_uwsim_test");
-  Generate(dir / "one", "--seed 5 --max_images 2 --num_threads 1");
-  Generate(dir / "two", "--seed 5 --max_images 2 --num_threads 2");
-  Generate(dir / "other", "--seed 6 --max_images 2 --num_threads 2");
+  Generate(dir / "one", "--seed 5 --max_images 3 --num_threads 1");
+  Generate(dir / "two", "--seed 5 --max_images 3 --num_threads 2");
+  Generate(dir / "other", "--seed 6 --max_images 3 --num_threads 2");
   const auto one = Files(dir / "one");
   const auto two = Files(dir / "two");
   const auto other = Files(dir / "other");
-  // 2 images, nav.csv and truth/: cameras, images, points3D, ref_images,
-  // nav.csv, mesh.ply, sim.json.
-  ASSERT_EQ(one.size(), 10u);
+  // 3 images, a laser image and its auxiliary, nav.csv, image_times.csv,
+  // lasers.json and truth/: cameras, images, points3D, ref_images, nav.csv,
+  // mesh.ply, sim.json, lasers.json, laser_images.json.
+  ASSERT_EQ(one.size(), 17u);
+  EXPECT_TRUE(one.count("laser_images/L00002_aux.png"));
   for (const auto& [name, bytes] : one) {
     ASSERT_TRUE(two.count(name)) << name;
     EXPECT_TRUE(two.at(name) == bytes) << name << " differs";
   }
   EXPECT_FALSE(other.at("images/00000.png") == one.at("images/00000.png"));
   EXPECT_FALSE(other.at("nav.csv") == one.at("nav.csv"));
+  EXPECT_FALSE(other.at("laser_images/L00002.png") ==
+               one.at("laser_images/L00002.png"));
+  EXPECT_FALSE(other.at("lasers.json") == one.at("lasers.json"));
 }
 
 TEST(Uwsim, RefusesToWriteIntoAFolderInUse) {
