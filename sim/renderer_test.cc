@@ -790,41 +790,38 @@ TEST(RendererLasers, FootprintIsTheFirstHitSeenByTheCameraAndAttenuated) {
   frame.optics.peak_level = 6.0;
   const RenderOptions options = LaserOnlyOptions(2);
 
-  // Wall at 3 m; a small plate between it and the camera covers the spot
-  // (at (0.2, 0, 3)) but leaves the beam free.
-  TriangleMesh hiding = FacingPlane(3.0);
-  AddGrid({0.05, -0.05, 1.0}, {0, 0.1, 0}, {0.1, 0, 0}, 1, 1, &hiding);
-  {
-    const RayCaster caster(hiding);
-    const Renderer renderer(caster, texture, camera, options);
-    const LaserSpotTruth truth =
-        TrueLaserSpot(caster, camera, Rigid3d(), laser);
-    EXPECT_FALSE(truth.visible);
-    const cv::Mat image = renderer.Render(Rigid3d(), 1, 0, frame).image;
-    EXPECT_EQ(cv::countNonZero(image.reshape(1)), 0);
-  }
-  // A plate across the beam at 1 m: the spot is on the plate.
-  TriangleMesh blocking = FacingPlane(3.0);
-  AddGrid({0.15, -0.05, 1.0}, {0, 0.1, 0}, {0.1, 0, 0}, 1, 1, &blocking);
-  {
-    const RayCaster caster(blocking);
-    const Renderer renderer(caster, texture, camera, options);
-    const LaserSpotTruth truth =
-        TrueLaserSpot(caster, camera, Rigid3d(), laser);
-    ASSERT_TRUE(truth.visible);
-    EXPECT_NEAR(truth.range_m, 1.0, 1e-12);
-    const cv::Mat image = renderer.Render(Rigid3d(), 1, 0, frame).image;
-    double total = 0.0;
-    const Eigen::Vector2d centroid =
-        Centroid(image, 2, truth.pixel, 8.0, &total);
-    EXPECT_LT((centroid - truth.pixel).norm(), 0.1);
-    EXPECT_EQ(cv::countNonZero(image.reshape(1)),
-              cv::countNonZero(
-                  image(cv::Rect(static_cast<int>(truth.pixel.x()) - 8,
-                                 static_cast<int>(truth.pixel.y()) - 8, 17, 17))
-                      .clone()
-                      .reshape(1)));
-  }
+  // A wall at 3 m and a 10 cm plate at 1 m whose near edge is at x =
+  // plate_x; the laser image and the truth of its spot.
+  const auto with_plate = [&](double plate_x, LaserSpotTruth* truth) {
+    TriangleMesh mesh = FacingPlane(3.0);
+    AddGrid({plate_x, -0.05, 1.0}, {0, 0.1, 0}, {0.1, 0, 0}, 1, 1, &mesh);
+    const RayCaster caster(mesh);
+    *truth = TrueLaserSpot(caster, camera, Rigid3d(), laser);
+    return Renderer(caster, texture, camera, options)
+        .Render(Rigid3d(), 1, 0, frame)
+        .image;
+  };
+  // The plate covers the spot (at (0.2, 0, 3)) but leaves the beam free.
+  LaserSpotTruth hidden;
+  const cv::Mat hidden_image = with_plate(0.05, &hidden);
+  EXPECT_FALSE(hidden.visible);
+  EXPECT_EQ(cv::countNonZero(hidden_image.reshape(1)), 0);
+  // The plate lies across the beam: the spot is on the plate.
+  LaserSpotTruth blocked;
+  const cv::Mat blocked_image = with_plate(0.15, &blocked);
+  ASSERT_TRUE(blocked.visible);
+  EXPECT_NEAR(blocked.range_m, 1.0, 1e-12);
+  double total = 0.0;
+  const Eigen::Vector2d centroid =
+      Centroid(blocked_image, 2, blocked.pixel, 8.0, &total);
+  EXPECT_LT((centroid - blocked.pixel).norm(), 0.1);
+  EXPECT_EQ(cv::countNonZero(blocked_image.reshape(1)),
+            cv::countNonZero(
+                blocked_image(cv::Rect(static_cast<int>(blocked.pixel.x()) - 8,
+                                       static_cast<int>(blocked.pixel.y()) - 8,
+                                       17, 17))
+                    .clone()
+                    .reshape(1)));
   // Attenuation: the spot's red sum at 2 m and 3 m (the beam spreads but
   // keeps its power; the footprint is larger but no dimmer in total)
   // differs by exp(-c (2 + 2)) / exp(-c (3 + 3)) and by the 1/d^2 of the
