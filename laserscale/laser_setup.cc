@@ -78,18 +78,35 @@ Eigen::Matrix3d IsotropicDirectionCovariance(const Eigen::Vector3d& direction,
          (Eigen::Matrix3d::Identity() - unit * unit.transpose());
 }
 
+nlohmann::json LaserJson(const Laser& laser) {
+  return {{"name", laser.name},
+          {"origin_in_cam", ToJson(laser.origin_in_cam)},
+          {"direction_in_cam", ToJson(laser.direction_in_cam)},
+          {"origin_cov", ToJson(laser.origin_cov)},
+          {"direction_cov", ToJson(laser.direction_cov)},
+          {"colour", ToJson(laser.colour)}};
+}
+
+Laser LaserFromJson(const nlohmann::json& json, const std::string& where) {
+  JsonFields fields(json, where);
+  Laser laser;
+  fields.Require("name", &laser.name);
+  fields.Require("origin_in_cam", &laser.origin_in_cam);
+  fields.Require("direction_in_cam", &laser.direction_in_cam);
+  fields.Read("origin_cov", &laser.origin_cov);
+  fields.Read("direction_cov", &laser.direction_cov);
+  fields.Read("colour", &laser.colour);
+  fields.RejectUnknown();
+  return laser;
+}
+
 std::string LasersJsonText(const std::vector<LaserSetup>& setups) {
   nlohmann::json json_setups = nlohmann::json::array();
   for (const LaserSetup& setup : setups) {
     setup.Check();
     nlohmann::json lasers = nlohmann::json::array();
     for (const Laser& laser : setup.lasers) {
-      lasers.push_back({{"name", laser.name},
-                        {"origin_in_cam", ToJson(laser.origin_in_cam)},
-                        {"direction_in_cam", ToJson(laser.direction_in_cam)},
-                        {"origin_cov", ToJson(laser.origin_cov)},
-                        {"direction_cov", ToJson(laser.direction_cov)},
-                        {"colour", ToJson(laser.colour)}});
+      lasers.push_back(LaserJson(laser));
     }
     json_setups.push_back(
         {{"name", setup.name}, {"dives", setup.dives}, {"lasers", lasers}});
@@ -145,17 +162,8 @@ std::vector<LaserSetup> ParseLasersJson(const std::string& text,
       throw ErrorAt(setup_where, ".lasers: expected an array");
     }
     for (size_t l = 0; l < json_lasers.size(); ++l) {
-      JsonFields laser_fields(
-          json_lasers[l], setup_where + ".lasers[" + std::to_string(l) + "]");
-      Laser laser;
-      laser_fields.Require("name", &laser.name);
-      laser_fields.Require("origin_in_cam", &laser.origin_in_cam);
-      laser_fields.Require("direction_in_cam", &laser.direction_in_cam);
-      laser_fields.Read("origin_cov", &laser.origin_cov);
-      laser_fields.Read("direction_cov", &laser.direction_cov);
-      laser_fields.Read("colour", &laser.colour);
-      laser_fields.RejectUnknown();
-      setup.lasers.push_back(laser);
+      setup.lasers.push_back(LaserFromJson(
+          json_lasers[l], setup_where + ".lasers[" + std::to_string(l) + "]"));
     }
     try {
       setup.Check();

@@ -44,6 +44,13 @@ struct LaserSetup {
 Eigen::Matrix3d IsotropicDirectionCovariance(const Eigen::Vector3d& direction,
                                              double sigma_rad);
 
+// One laser as in lasers.json's "lasers" arrays; reading needs name,
+// origin_in_cam and direction_in_cam (covariances default to zero, colour to
+// red) and rejects unknown keys, naming `where`. Geometry is checked by
+// LaserSetup::Check.
+nlohmann::json LaserJson(const Laser& laser);
+Laser LaserFromJson(const nlohmann::json& json, const std::string& where);
+
 // lasers.json: {"format": "uwmetric-lasers", "version": 1, "setups": [...]}.
 std::string LasersJsonText(const std::vector<LaserSetup>& setups);
 // Reads and checks lasers.json; errors name the file and the offending key.

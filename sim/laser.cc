@@ -100,10 +100,7 @@ void LaserOptions::Check() const {
 void to_json(nlohmann::json& json, const LaserOptions& options) {
   nlohmann::json custom = nlohmann::json::array();
   for (const Laser& laser : options.custom_lasers) {
-    custom.push_back({{"name", laser.name},
-                      {"origin_in_cam", ToJson(laser.origin_in_cam)},
-                      {"direction_in_cam", ToJson(laser.direction_in_cam)},
-                      {"colour", ToJson(laser.colour)}});
+    custom.push_back(LaserJson(laser));
   }
   json = {{"setup", options.setup},
           {"custom_lasers", custom},
@@ -134,15 +131,8 @@ void from_json(const nlohmann::json& json, LaserOptions& options) {
     }
     options.custom_lasers.clear();
     for (size_t i = 0; i < custom.size(); ++i) {
-      JsonFields laser_fields(
-          custom[i], "lasers.custom_lasers[" + std::to_string(i) + "]");
-      Laser laser;
-      laser_fields.Require("name", &laser.name);
-      laser_fields.Require("origin_in_cam", &laser.origin_in_cam);
-      laser_fields.Require("direction_in_cam", &laser.direction_in_cam);
-      laser_fields.Read("colour", &laser.colour);
-      laser_fields.RejectUnknown();
-      options.custom_lasers.push_back(laser);
+      options.custom_lasers.push_back(LaserFromJson(
+          custom[i], "lasers.custom_lasers[" + std::to_string(i) + "]"));
     }
   }
   fields.Read("colour", &options.colour);
