@@ -7,7 +7,10 @@
 # the CPU; and shows what uwmetric reads from colmap's files (database
 # schema and contents, model_analyzer figures, a lossless BIN -> BIN round
 # trip) and how far colmap's cameras are from the truth after colmap's own
-# similarity alignment. Takes about 4 minutes on 2 cores.
+# similarity alignment; then runs the same model through stock colmap's
+# bundle_adjuster + model_aligner and through uwmetric's navigation-fused
+# bundle adjuster and prints one comparison table against the truth.
+# Takes about 8 minutes on 2 cores.
 #
 #   bash scripts/demo.sh [OUTPUT_DIR]      # default: out/demo
 set -euo pipefail
@@ -58,6 +61,15 @@ registered=$("$bin/uwcolmap" model_analyzer --path "$out/sparse/0" | sed -n 's/^
 total=$(ls "$out/sim/images" | wc -l)
 echo "registered images: $registered of $total"
 grep -i "alignment error" "$out/logs/model_aligner.log" | sed 's/^=> //; s/$/ [m]/'
+
+echo
+echo "== 5. Navigation: stock colmap BA + model_aligner vs uwmetric's navigation-fused BA"
+echo "(camera on the vehicle as uwsim places it; the navigation has uwsim's USBL-like"
+echo " errors, ~1 m per image on this 6 m survey: see docs/uwcolmap.md#bundle_adjuster)"
+rm -rf "$out/compare"
+bash "$root/scripts/compare_with_colmap.sh" "$out/sim" "$out/sparse/0" \
+  "$out/compare" --mount down --lever_arm 0.6,0,-0.3 --boresight 0.3,-0.5,0.8
+echo "navigation-fused model (L-curve weight): $out/compare (ba_report.json, lcurve.png)"
 
 echo
 echo "Demo finished in $((SECONDS - start)) s; outputs in $out"

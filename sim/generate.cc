@@ -94,6 +94,8 @@ void SimConfig::Check() const {
   world_options.Check();
   survey_options.Check();
   navigation.Check();
+  navigation.CheckNumDives(
+      survey == SurveyKind::kMultiDive ? survey_options.num_dives : 1);
   render.Check();
   lasers.Check();
   rig.Check();

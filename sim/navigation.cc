@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/json_fields.h"
 
 namespace uw::sim {
 namespace {
@@ -47,15 +48,51 @@ void NavigationOptions::Check() const {
   if (drift_correlation_time_s <= 0.0) {
     throw ErrorAt("navigation option drift_correlation_time_s must be > 0");
   }
+  for (size_t k = 0; k < dive_biases_m.size(); ++k) {
+    if (!dive_biases_m[k].allFinite()) {
+      throw ErrorAt("navigation option dive_biases_m[", k, "] must be finite");
+    }
+  }
+}
+
+void NavigationOptions::CheckNumDives(int num_dives) const {
+  if (!dive_biases_m.empty() &&
+      dive_biases_m.size() != static_cast<size_t>(num_dives)) {
+    throw ErrorAt("navigation option dive_biases_m has ", dive_biases_m.size(),
+                  " entries; the survey has ", num_dives,
+                  " dive(s) and needs one per dive");
+  }
 }
 
 void to_json(nlohmann::json& json, const NavigationOptions& options) {
   json = nlohmann::json::object();
   for (const auto& [name, field] : Fields()) json[name] = options.*field;
+  // Written only when set, so that sim.json without it is unchanged.
+  if (!options.dive_biases_m.empty()) {
+    nlohmann::json biases = nlohmann::json::array();
+    for (const Eigen::Vector3d& bias : options.dive_biases_m) {
+      biases.push_back(ToJson(bias));
+    }
+    json["dive_biases_m"] = biases;
+  }
 }
 
 void from_json(const nlohmann::json& json, NavigationOptions& options) {
   for (const auto& [key, value] : json.items()) {
+    if (key == "dive_biases_m") {
+      if (!value.is_array()) {
+        throw ErrorAt("navigation.dive_biases_m: expected one [x, y, z] ",
+                      "per dive, got ", value.dump());
+      }
+      options.dive_biases_m.clear();
+      for (const nlohmann::json& bias : value) {
+        const nlohmann::json wrapped = {{"dive_biases_m", bias}};
+        Eigen::Vector3d read;
+        JsonFields(wrapped, "navigation").Read("dive_biases_m", &read);
+        options.dive_biases_m.push_back(read);
+      }
+      continue;
+    }
     bool known = false;
     for (const auto& [name, field] : Fields()) {
       if (key == name) {
@@ -104,6 +141,15 @@ std::vector<NavigationRecord> NoisyNavigation(
                            depth_of(station.vehicle_position);
       Eigen::Vector3d bias = sigma * gaussian3();
       bias.z() = 0.0;
+      if (!options.dive_biases_m.empty()) {
+        if (station.dive < 1 ||
+            station.dive > static_cast<int>(options.dive_biases_m.size())) {
+          throw ErrorAt("navigation option dive_biases_m has ",
+                        options.dive_biases_m.size(), " entries; image ",
+                        station.image_name, " is of dive ", station.dive);
+        }
+        bias = options.dive_biases_m[station.dive - 1];
+      }
       biases[station.dive] = bias;
     }
   }

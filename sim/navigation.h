@@ -23,6 +23,11 @@ struct NavigationOptions {
   double usbl_sigma_fraction_of_depth = 0.01;
   // Constant per-dive horizontal bias drawn with σ = fraction × depth.
   double dive_bias_fraction_of_depth = 0.01;
+  // Explicit per-dive biases (world frame, m), dive 1 first: when not empty
+  // they replace the random draw (which is still made, so that the other
+  // errors stay those of the same seed). One entry per dive of the survey
+  // (SimConfig::Check); z is usually 0, as the depth sensor is absolute.
+  std::vector<Eigen::Vector3d> dive_biases_m;
   // Smooth drift: a first-order Gauss-Markov velocity error with σ =
   // fraction × speed and correlation time tau, integrated over time.
   double drift_fraction_of_speed = 0.01;
@@ -32,6 +37,8 @@ struct NavigationOptions {
   double yaw_sigma_deg = 0.2;
 
   void Check() const;
+  // Throws uw::Error unless dive_biases_m is empty or has num_dives entries.
+  void CheckNumDives(int num_dives) const;
 };
 void to_json(nlohmann::json& json, const NavigationOptions& options);
 void from_json(const nlohmann::json& json, NavigationOptions& options);
@@ -55,6 +62,8 @@ std::vector<NavigationRecord> TrueNavigation(
 
 // Navigation with errors; deterministic for a seed. `dive_biases` receives
 // the bias applied to each dive (index dive − 1), for the ground truth.
+// Throws uw::Error when options.dive_biases_m is given without an entry for
+// every dive of the stations.
 std::vector<NavigationRecord> NoisyNavigation(
     const std::vector<SurveyStation>& stations,
     const NavigationOptions& options, uint64_t seed,

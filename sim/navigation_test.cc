@@ -110,6 +110,47 @@ TEST(Navigation, SeededAndWrittenAsCsv) {
   EXPECT_EQ(rows, 9u);
 }
 
+TEST(Navigation, ExplicitDiveBiasesReplaceTheDrawnOnes) {
+  const auto stations = LineStations(20);
+  NavigationOptions options;
+  std::vector<Eigen::Vector3d> drawn;
+  const auto random = NoisyNavigation(stations, options, 3, &drawn);
+  options.dive_biases_m = {{2.0, -1.0, 0.0}, {-0.5, 2.5, 0.1}};
+  std::vector<Eigen::Vector3d> given;
+  const auto explicit_biases = NoisyNavigation(stations, options, 3, &given);
+  ASSERT_EQ(given.size(), 2u);
+  EXPECT_EQ(given[1], Eigen::Vector3d(-0.5, 2.5, 0.1));
+  // Only the bias changes: the white noise and drift are the seed's.
+  for (size_t i = 0; i < stations.size(); ++i) {
+    const int dive = stations[i].dive - 1;
+    EXPECT_LT((explicit_biases[i].position - given[dive] -
+               (random[i].position - drawn[dive]))
+                  .norm(),
+              1e-12);
+  }
+  options.dive_biases_m.pop_back();
+  EXPECT_THROW(NoisyNavigation(stations, options, 3, nullptr), Error);
+  EXPECT_THROW(options.CheckNumDives(2), Error);
+  EXPECT_NO_THROW(options.CheckNumDives(1));
+}
+
+TEST(Navigation, DiveBiasesAreReadAndWrittenOnlyWhenSet) {
+  const nlohmann::json defaults = NavigationOptions();
+  EXPECT_FALSE(defaults.contains("dive_biases_m"));
+  const nlohmann::json json = {{"dive_biases_m", {{2, 0, 0}, {0, -3, 0}}}};
+  NavigationOptions read;
+  json.get_to(read);
+  ASSERT_EQ(read.dive_biases_m.size(), 2u);
+  EXPECT_EQ(read.dive_biases_m[1], Eigen::Vector3d(0, -3, 0));
+  const nlohmann::json written = read;
+  EXPECT_EQ(written.at("dive_biases_m"), json.at("dive_biases_m"));
+  NavigationOptions bad;
+  EXPECT_THROW(nlohmann::json({{"dive_biases_m", {{1, 2}}}}).get_to(bad),
+               Error);
+  bad.dive_biases_m = {{1, NAN, 0}};
+  EXPECT_THROW(bad.Check(), Error);
+}
+
 TEST(Navigation, OptionsAreChecked) {
   NavigationOptions options;
   options.depth_sigma_m = -1.0;

@@ -44,28 +44,6 @@ Camera CameraFromJson(const nlohmann::json& json, const std::string& where) {
   return camera;
 }
 
-nlohmann::json PoseJson(const Rigid3d& b_from_a) {
-  const Eigen::Quaterniond q = b_from_a.rotation.normalized();
-  return {{"qvec", {q.w(), q.x(), q.y(), q.z()}},
-          {"tvec", ToJson(b_from_a.translation)}};
-}
-
-Rigid3d PoseFromJson(const nlohmann::json& json, const std::string& where) {
-  JsonFields fields(json, where);
-  std::vector<double> qvec;
-  Rigid3d pose;
-  fields.Require("qvec", &qvec);
-  fields.Require("tvec", &pose.translation);
-  fields.RejectUnknown();
-  if (qvec.size() != 4 || !(Eigen::Vector4d(qvec.data()).norm() > 0.5)) {
-    throw ErrorAt(where,
-                  ".qvec: expected 4 numbers (w, x, y, z) of a unit "
-                  "quaternion");
-  }
-  pose.rotation = Eigen::Quaterniond(qvec[0], qvec[1], qvec[2], qvec[3]);
-  return pose;
-}
-
 void RigOptions::Check() const {
   for (size_t i = 0; i < cameras.size(); ++i) {
     const RigCameraOptions& rig_camera = cameras[i];
@@ -191,15 +169,17 @@ SurveyStation StationOfRigCamera(const std::vector<SurveyStation>& stations,
 std::string RigJsonText(const RigOptions& options, bool perturb,
                         uint64_t seed) {
   SplitMix64Stream random(SplitMix64(seed ^ 0x816A00000000ull));
-  nlohmann::json cameras = nlohmann::json::array();
-  cameras.push_back({{"camera_id", 1},
-                     {"image_prefix", Prefix(0)},
-                     {"cam_from_rig", PoseJson(Rigid3d())},
-                     {"rotation_sigma_deg", 0.0},
-                     {"translation_sigma_m", 0.0},
-                     {"time_offset_s", 0.0}});
+  RigConfig rig;
+  RigCameraConfig reference;
+  reference.camera_id = 1;
+  reference.image_prefix = Prefix(0);
+  rig.cameras.push_back(reference);
   for (size_t i = 0; i < options.cameras.size(); ++i) {
-    Rigid3d cam_from_rig = options.cameras[i].cam_from_rig;
+    RigCameraConfig camera;
+    camera.camera_id = static_cast<camera_t>(i + 2);
+    camera.image_prefix = Prefix(i + 1);
+    camera.cam_from_rig = options.cameras[i].cam_from_rig;
+    camera.time_offset_s = options.cameras[i].time_offset_s;
     if (perturb) {
       const Eigen::Vector3d rotation_error =
           options.rotation_sigma_deg * kDegToRad *
@@ -210,29 +190,18 @@ std::string RigJsonText(const RigOptions& options, bool perturb,
                                                         random.Gaussian(),
                                                         random.Gaussian());
       if (rotation_error.norm() > 0.0) {
-        cam_from_rig.rotation =
+        camera.cam_from_rig.rotation =
             Eigen::Quaterniond(Eigen::AngleAxisd(rotation_error.norm(),
                                                  rotation_error.normalized())) *
-            cam_from_rig.rotation.normalized();
+            camera.cam_from_rig.rotation.normalized();
       }
-      cam_from_rig.translation += translation_error;
+      camera.cam_from_rig.translation += translation_error;
+      camera.rotation_sigma_deg = options.rotation_sigma_deg;
+      camera.translation_sigma_m = options.translation_sigma_m;
     }
-    cameras.push_back(
-        {{"camera_id", i + 2},
-         {"image_prefix", Prefix(i + 1)},
-         {"cam_from_rig", PoseJson(cam_from_rig)},
-         {"rotation_sigma_deg", perturb ? options.rotation_sigma_deg : 0.0},
-         {"translation_sigma_m", perturb ? options.translation_sigma_m : 0.0},
-         {"time_offset_s", options.cameras[i].time_offset_s}});
+    rig.cameras.push_back(camera);
   }
-  const nlohmann::json json = {
-      {"format", "uwmetric-rig"},
-      {"version", 1},
-      {"frame",
-       "rig = camera 1 (COLMAP camera frame); cam_from_rig maps rig "
-       "coordinates to each camera's"},
-      {"cameras", cameras}};
-  return json.dump(2) + "\n";
+  return RigConfigJsonText(rig);
 }
 
 }  // namespace uw::sim

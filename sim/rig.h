@@ -15,6 +15,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "colmap_plugins/nav/rig_config.h"  // PoseJson, PoseFromJson
 #include "colmap_plugins/scene/model.h"
 #include "sim/survey.h"
 
@@ -23,10 +24,6 @@ namespace uw::sim {
 // A COLMAP camera as JSON: {"model", "width", "height", "params"}.
 nlohmann::json CameraJson(const Camera& camera);
 Camera CameraFromJson(const nlohmann::json& json, const std::string& where);
-
-// A pose as JSON: {"qvec": [w, x, y, z], "tvec": [x, y, z]} (COLMAP's order).
-nlohmann::json PoseJson(const Rigid3d& b_from_a);
-Rigid3d PoseFromJson(const nlohmann::json& json, const std::string& where);
 
 struct RigCameraOptions {
   Camera camera;
@@ -55,10 +52,10 @@ SurveyStation StationOfRigCamera(const std::vector<SurveyStation>& stations,
                                  const Rigid3d& cam_from_rig,
                                  double time_offset_s);
 
-// rig.json: {"format": "uwmetric-rig", "version": 1, "cameras": [...]}, one
-// entry per camera (reference first) with camera_id, image_prefix,
-// cam_from_rig, its sigmas and time_offset_s. With `seed`, the relative
-// poses of the non-reference cameras are perturbed by the sigmas.
+// rig.json (colmap_plugins/nav/rig_config.h): the reference camera (id 1,
+// images cam1/) then the others (ids 2, 3, ..., images cam2/, ...). With
+// `perturb`, the relative poses of the non-reference cameras are perturbed
+// by the sigmas (drawn from `seed`), which rig.json then reports.
 std::string RigJsonText(const RigOptions& options, bool perturb, uint64_t seed);
 
 }  // namespace uw::sim

@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "colmap_plugins/nav/camera_mount.h"
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/json_fields.h"
 #include "sim/ray_caster.h"
@@ -36,34 +37,8 @@ bool IsWallSurvey(const World& world) {
   return std::abs(world.survey_normal.z()) < 0.7;
 }
 
-// Nominal camera mounts, columns = camera axes in the vehicle frame.
-Eigen::Matrix3d DownMount() {
-  // Image top towards the bow: camera y = −x, z = −z, x = y × z = −y.
-  Eigen::Matrix3d vehicle_from_cam;
-  vehicle_from_cam.col(0) = -Eigen::Vector3d::UnitY();
-  vehicle_from_cam.col(1) = -Eigen::Vector3d::UnitX();
-  vehicle_from_cam.col(2) = -Eigen::Vector3d::UnitZ();
-  return vehicle_from_cam;
-}
-
-Eigen::Matrix3d StarboardMount() {
-  // Looking to starboard with the image upright: camera z = −y, y = −z,
-  // x = y × z = −x.
-  Eigen::Matrix3d vehicle_from_cam;
-  vehicle_from_cam.col(0) = -Eigen::Vector3d::UnitX();
-  vehicle_from_cam.col(1) = -Eigen::Vector3d::UnitZ();
-  vehicle_from_cam.col(2) = -Eigen::Vector3d::UnitY();
-  return vehicle_from_cam;
-}
-
-Rigid3d MakeVehicleFromCam(bool wall, const SurveyOptions& options) {
-  const Eigen::Matrix3d boresight =
-      WorldFromVehicleRotation(options.boresight_deg * kDegToRad);
-  Rigid3d vehicle_from_cam;
-  vehicle_from_cam.rotation =
-      Eigen::Quaterniond((wall ? StarboardMount() : DownMount()) * boresight);
-  vehicle_from_cam.translation = options.lever_arm_m;
-  return vehicle_from_cam;
+CameraMount MountOf(bool wall) {
+  return wall ? CameraMount::kStarboard : CameraMount::kDown;
 }
 
 // Image footprint (m) along the camera's x and y axes at distance d.
@@ -235,23 +210,12 @@ void from_json(const nlohmann::json& json, SurveyOptions& options) {
   fields.RejectUnknown();
 }
 
-Eigen::Matrix3d WorldFromVehicleRotation(const Eigen::Vector3d& rpy) {
-  return (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
-          Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
-      .toRotationMatrix();
-}
-
-Eigen::Vector3d RollPitchYawFromRotation(const Eigen::Matrix3d& rotation) {
-  // R = Rz(yaw) Ry(pitch) Rx(roll): R(2,0) = -sin(pitch).
-  const double pitch = std::asin(std::clamp(-rotation(2, 0), -1.0, 1.0));
-  const double roll = std::atan2(rotation(2, 1), rotation(2, 2));
-  const double yaw = std::atan2(rotation(1, 0), rotation(0, 0));
-  return Eigen::Vector3d(roll, pitch, yaw);
-}
-
 Rigid3d VehicleFromCam(const World& world, const SurveyOptions& options) {
-  return MakeVehicleFromCam(IsWallSurvey(world), options);
+  NavToCameraOptions camera;
+  camera.mount = MountOf(IsWallSurvey(world));
+  camera.lever_arm_m = options.lever_arm_m;
+  camera.boresight_deg = options.boresight_deg;
+  return uw::VehicleFromCam(camera);
 }
 
 namespace {
@@ -641,7 +605,7 @@ void FlyViews(const World& world, const SurveyFrame& frame,
   const Eigen::Matrix3d world_from_cam_0 =
       Eigen::Quaterniond::FromTwoVectors(frame.normal, target.normal)
           .toRotationMatrix() *
-      world_from_vehicle_0 * (frame.wall ? StarboardMount() : DownMount());
+      world_from_vehicle_0 * NominalVehicleFromCamRotation(MountOf(frame.wall));
 
   const Eigen::Matrix3d cam_from_vehicle =
       vehicle_from_cam.RotationMatrix().transpose();

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "colmap_plugins/nav/attitude.h"
 #include "colmap_plugins/scene/model.h"
 
 namespace uw::sim {
@@ -116,14 +117,15 @@ struct SurveyStation {
   Rigid3d cam_from_world;
 };
 
-// Rotation world_from_vehicle for roll, pitch, yaw (radians).
-Eigen::Matrix3d WorldFromVehicleRotation(const Eigen::Vector3d& rpy);
-// Inverse of WorldFromVehicleRotation (yaw in (-pi, pi]).
-Eigen::Vector3d RollPitchYawFromRotation(const Eigen::Matrix3d& rotation);
+// The vehicle attitude is nav.csv's roll, pitch, yaw, as the importer of
+// navigation reads it.
+using uw::RollPitchYawFromRotation;
+using uw::WorldFromVehicleRotation;
 
-// The camera's pose on the vehicle: looking down at a floor, looking to
-// starboard (vehicle −y) at a wall (a survey plane steeper than ~45°).
-// Includes the lever arm and boresight of `options`.
+// The camera's pose on the vehicle: the importer's mount "down" over a
+// floor, "starboard" (vehicle −y) at a wall (a survey plane steeper than
+// ~45°), with the lever arm and boresight of `options`
+// (colmap_plugins/nav/camera_mount.h).
 Rigid3d VehicleFromCam(const World& world, const SurveyOptions& options);
 
 // Plans the stations of a survey of `world` seen through `camera`. The

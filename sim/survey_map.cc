@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -14,6 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "colmap_plugins/nav/nav_csv.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
@@ -22,107 +22,13 @@ namespace uw::sim {
 namespace fs = std::filesystem;
 namespace {
 
-// ---------------------------------------------------------------------------
-// nav.csv, as NavigationCsv writes it (docs/formats.md). The map needs only
-// image_name, dive and x, y, z, but every value is checked so that a damaged
-// file is refused rather than drawn halfway.
-
-const std::array<const char*, 15> kNavColumns = {
-    "image_name", "time",  "dive",     "x",         "y",
-    "z",          "roll",  "pitch",    "yaw",       "std_x",
-    "std_y",      "std_z", "std_roll", "std_pitch", "std_yaw"};
-
-std::string Trim(const std::string& text) {
-  const size_t first = text.find_first_not_of(" \t");
-  if (first == std::string::npos) return "";
-  return text.substr(first, text.find_last_not_of(" \t") - first + 1);
-}
-
-std::vector<std::string> SplitCsvLine(const std::string& line) {
-  std::vector<std::string> fields;
-  size_t start = 0;
-  while (true) {
-    const size_t comma = line.find(',', start);
-    fields.push_back(Trim(line.substr(start, comma - start)));
-    if (comma == std::string::npos) return fields;
-    start = comma + 1;
-  }
-}
-
-std::string NavHeader() {
-  std::string header;
-  for (const char* column : kNavColumns) {
-    header += (header.empty() ? "" : ",") + std::string(column);
-  }
-  return header;
-}
-
+// nav.csv through the importer's reader: a damaged file is refused rather
+// than drawn halfway.
 std::vector<SurveyMapPoint> ReadNavCsv(const fs::path& path) {
-  const std::string data = ReadFileToString(path);
   std::vector<SurveyMapPoint> points;
-  std::unordered_map<std::string, size_t> line_of_image;
-  bool have_header = false;
-  size_t line_number = 0;
-  for (size_t pos = 0; pos < data.size();) {
-    size_t end = data.find('\n', pos);
-    if (end == std::string::npos) end = data.size();
-    std::string line = data.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    line = Trim(line);
-    if (line.empty() || line[0] == '#') continue;
-    const std::string where =
-        path.string() + ":" + std::to_string(line_number) + ": ";
-    const std::vector<std::string> fields = SplitCsvLine(line);
-    if (!have_header) {
-      if (!std::equal(fields.begin(), fields.end(), kNavColumns.begin(),
-                      kNavColumns.end())) {
-        throw ErrorAt(where, "expected the header '", NavHeader(), "', got '",
-                      line, "'");
-      }
-      have_header = true;
-      continue;
-    }
-    if (fields.size() != kNavColumns.size()) {
-      throw ErrorAt(where, "expected ", kNavColumns.size(), " fields, got ",
-                    fields.size());
-    }
-    SurveyMapPoint point;
-    point.image_name = fields[0];
-    if (point.image_name.empty()) throw ErrorAt(where, "empty image_name");
-    const auto [dive_end, dive_error] = std::from_chars(
-        fields[2].data(), fields[2].data() + fields[2].size(), point.dive);
-    if (dive_error != std::errc() ||
-        dive_end != fields[2].data() + fields[2].size() || point.dive < 1) {
-      throw ErrorAt(where, "dive must be an integer >= 1, got '", fields[2],
-                    "'");
-    }
-    for (size_t k = 1; k < fields.size(); ++k) {
-      if (k == 2) continue;
-      double value = 0.0;
-      const std::string& field = fields[k];
-      const auto [value_end, value_error] =
-          std::from_chars(field.data(), field.data() + field.size(), value);
-      if (value_error != std::errc() ||
-          value_end != field.data() + field.size() || !std::isfinite(value)) {
-        throw ErrorAt(where, kNavColumns[k], " must be a finite number, got '",
-                      field, "'");
-      }
-      if (k >= 3 && k <= 5) point.position_in_world(k - 3) = value;
-    }
-    const auto [previous, inserted] =
-        line_of_image.emplace(point.image_name, line_number);
-    if (!inserted) {
-      throw ErrorAt(where, "image '", point.image_name,
-                    "' already has a row at line ", previous->second);
-    }
-    points.push_back(point);
+  for (const NavRecord& record : ReadNavigationCsv(path)) {
+    points.push_back({record.image_name, record.dive, record.position});
   }
-  if (!have_header) {
-    throw ErrorAt(path.string(), ": no header row '", NavHeader(), "'");
-  }
-  if (points.empty()) throw ErrorAt(path.string(), ": no navigation rows");
   return points;
 }
 

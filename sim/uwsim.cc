@@ -10,6 +10,7 @@
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
 #include "sim/generate.h"
+#include "sim/observe.h"
 #include "sim/survey_map.h"
 
 int main(int argc, char** argv) {
@@ -75,6 +76,49 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   map_command->add_option("--title", map_options.title,
                           "Title above the map (ASCII)");
+  CLI::App* observe_command = app.add_subcommand(
+      "observe",
+      "Write the feature tracks a perfect matcher and mapper would give for "
+      "an uwsim output folder: points sampled on truth/mesh.ply, observed by "
+      "every image that sees them, with Gaussian pixel noise; a COLMAP text "
+      "model with truth/'s camera and image ids (docs/uwsim.md).\n\n"
+      "Example:\n  uwsim observe --sim sim --output_path tracks "
+      "--pixel_sigma 0.5 --init perturbed");
+  std::string observe_sim;
+  std::string observe_out;
+  std::string observe_init = "truth";
+  uw::sim::ObserveOptions observe_options;
+  observe_command
+      ->add_option("--sim", observe_sim, "Output folder of uwsim generate")
+      ->required();
+  observe_command
+      ->add_option("--output_path", observe_out,
+                   "Model folder to write (new or empty)")
+      ->required();
+  observe_command
+      ->add_option("--pixel_sigma", observe_options.pixel_sigma,
+                   "Standard deviation of the pixel noise per coordinate")
+      ->capture_default_str();
+  observe_command
+      ->add_option("--num_points", observe_options.num_points,
+                   "3D points, each seen by at least 2 images")
+      ->capture_default_str();
+  observe_command->add_option("--seed", observe_options.seed, "Random seed")
+      ->capture_default_str();
+  observe_command
+      ->add_option("--init", observe_init,
+                   "Poses and points: truth, or perturbed (the truth moved "
+                   "by a random similarity, scale 0.3-3, with pose noise)")
+      ->capture_default_str();
+  observe_command
+      ->add_option("--perturb_rotation_deg",
+                   observe_options.perturb_rotation_deg,
+                   "perturbed: rotation noise per camera and axis")
+      ->capture_default_str();
+  observe_command
+      ->add_option("--perturb_position_m", observe_options.perturb_position_m,
+                   "perturbed: camera centre noise per axis, world metres")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -85,6 +129,23 @@ int main(int argc, char** argv) {
       uw::sim::WriteSurveyMap(map_sim, map_out, map_options);
       std::cout << "[uwsim] map of " << map_sim << " written to " << map_out
                 << std::endl;
+    } catch (const std::exception& error) {
+      std::cerr << "ERROR: " << error.what() << std::endl;
+      return 1;
+    }
+    return 0;
+  }
+  if (observe_command->parsed()) {
+    try {
+      observe_options.init = uw::sim::ObserveInitFromName(observe_init);
+      const uw::sim::ObserveSummary summary =
+          uw::sim::ObserveSimulation(observe_sim, observe_out, observe_options);
+      std::cout << "[uwsim] observe: " << summary.num_points << " points ("
+                << summary.num_candidates << " sampled), "
+                << summary.num_observations << " observations, init "
+                << observe_init << " (model_from_world "
+                << uw::ToJson(summary.model_from_world).dump()
+                << ") written to " << observe_out << std::endl;
     } catch (const std::exception& error) {
       std::cerr << "ERROR: " << error.what() << std::endl;
       return 1;

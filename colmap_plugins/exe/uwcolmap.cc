@@ -5,8 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "colmap_plugins/exe/align_commands.h"
+#include "colmap_plugins/exe/ba_commands.h"
 #include "colmap_plugins/exe/database_commands.h"
 #include "colmap_plugins/exe/model_commands.h"
+#include "colmap_plugins/exe/nav_commands.h"
 
 namespace {
 
@@ -18,12 +21,22 @@ struct Command {
 
 const std::vector<Command>& Commands() {
   static const std::vector<Command> commands = {
+      {"bundle_adjuster", uw::RunBundleAdjuster,
+       "bundle adjustment fused with navigation, dive offsets, soft rigs"},
       {"database_analyzer", uw::RunDatabaseAnalyzer,
        "print the schema and contents of a COLMAP database"},
+      {"lcurve", uw::RunLCurve,
+       "sweep the navigation weight; L-curve plot and corner"},
+      {"model_aligner", uw::RunModelAligner,
+       "align a model to navigation or reference positions (similarity)"},
       {"model_analyzer", uw::RunModelAnalyzer,
        "print statistics of a model (as colmap model_analyzer)"},
       {"model_converter", uw::RunModelConverter,
        "convert a model between BIN and TXT, keeping record order"},
+      {"model_comparer", uw::RunModelComparer,
+       "measure a model against another model or uwsim's truth"},
+      {"pose_prior_importer", uw::RunPosePriorImporter,
+       "write camera pose priors from a navigation log into a database"},
   };
   return commands;
 }

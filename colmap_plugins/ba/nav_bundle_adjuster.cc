@@ -1,0 +1,824 @@
+#include "colmap_plugins/ba/nav_bundle_adjuster.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <set>
+#include <thread>
+
+#include <ceres/ceres.h>
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+
+#include "colmap_plugins/ba/nav_prior.h"
+#include "colmap_plugins/ba/reprojection_error.h"
+#include "colmap_plugins/ba/rig_prior.h"
+#include "colmap_plugins/cameras/camera_models.h"
+#include "colmap_plugins/util/error.h"
+
+namespace uw {
+
+std::string LossTypeName(LossType type) {
+  switch (type) {
+    case LossType::kTrivial:
+      return "none";
+    case LossType::kHuber:
+      return "huber";
+    case LossType::kCauchy:
+      return "cauchy";
+  }
+  return "?";
+}
+
+LossType LossTypeFromName(const std::string& name) {
+  if (name == "none" || name == "trivial" || name == "TRIVIAL") {
+    return LossType::kTrivial;
+  }
+  if (name == "huber" || name == "HUBER") return LossType::kHuber;
+  if (name == "cauchy" || name == "CAUCHY") return LossType::kCauchy;
+  throw ErrorAt("unknown loss '", name, "' (none, huber or cauchy)");
+}
+
+void NavBundleAdjustmentOptions::Check() const {
+  const auto positive = [](double value, const char* name) {
+    if (!(std::isfinite(value) && value > 0.0)) {
+      throw ErrorAt("bundle adjustment option ", name, " = ", value,
+                    " must be positive");
+    }
+  };
+  positive(loss_scale_px, "loss_scale_px");
+  positive(weight_px_per_m, "weight_px_per_m");
+  positive(nav_loss_scale, "nav_loss_scale");
+  positive(dive_offset_sigma_m, "dive_offset_sigma_m");
+  positive(rig_max_time_gap_s, "rig_max_time_gap_s");
+  if (max_num_iterations < 0 || max_linear_solver_iterations < 1) {
+    throw ErrorAt("bundle adjustment iteration limits must be >= 0 / >= 1");
+  }
+  for (const double tolerance :
+       {function_tolerance, gradient_tolerance, parameter_tolerance}) {
+    if (!(std::isfinite(tolerance) && tolerance >= 0.0)) {
+      throw ErrorAt("bundle adjustment tolerances must be >= 0");
+    }
+  }
+}
+
+double NavSigma(const std::vector<ImagePosePrior>& priors) {
+  if (priors.empty()) return 0.0;
+  double sum = 0.0;
+  for (const ImagePosePrior& prior : priors) {
+    sum += prior.position_covariance.trace() / 3.0;
+  }
+  return std::sqrt(sum / priors.size());
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct PoseBlock {
+  double rotation[4];  // cam_from_world, w x y z
+  double translation[3];
+};
+
+ceres::LossFunction* MakeLoss(LossType type, double scale) {
+  switch (type) {
+    case LossType::kTrivial:
+      return nullptr;
+    case LossType::kHuber:
+      return new ceres::HuberLoss(scale);
+    case LossType::kCauchy:
+      return new ceres::CauchyLoss(scale);
+  }
+  return nullptr;
+}
+
+// Weights of each objective: what multiplies each residual kind. The
+// solve uses the thesis's normalised weights; the covariance uses the
+// statistical ones (every residual divided by its own sigma).
+struct Weights {
+  double reprojection = 1.0;  // per px
+  double nav = 1.0;           // per sigma of a prior
+  double rig = 1.0;           // per sigma of a rig constraint
+  double reprojection_loss_scale = 1.0;
+  double nav_loss_scale = 1.0;
+};
+
+// A rig term: the rig camera's image, its reference image(s), alpha.
+struct RigPairing {
+  size_t cam_index = 0;
+  size_t a_index = 0;
+  std::optional<size_t> b_index;
+  double alpha = 0.0;
+  const SoftRigCamera* camera = nullptr;
+};
+
+// The parameter blocks of a model being adjusted, and the terms to add.
+class Adjustment {
+ public:
+  Adjustment(const NavBundleAdjustmentOptions& options,
+             const std::vector<ImagePosePrior>& priors, const SoftRig* rig,
+             const std::unordered_map<image_t, double>& image_times,
+             Reconstruction* reconstruction);
+
+  NavBundleAdjustmentReport Run();
+
+ private:
+  void IndexAndValidate();
+  void PairRigImages(const std::unordered_map<image_t, double>& image_times);
+  std::string ChooseGauge();
+  // Builds every residual block with `weights` into `problem`; records the
+  // blocks of each term in `terms` when given.
+  void Build(const Weights& weights, ceres::Problem* problem,
+             std::map<std::string, std::vector<ceres::ResidualBlockId>>* terms);
+  void SetManifoldsAndConstants(ceres::Problem* problem);
+  std::map<std::string, CostTerm> EvaluateTerms(
+      ceres::Problem* problem,
+      const std::map<std::string, std::vector<ceres::ResidualBlockId>>& terms)
+      const;
+  void EstimateOffsetCovariance(NavBundleAdjustmentReport* report);
+  void FillPriorResiduals(NavBundleAdjustmentReport* report) const;
+  void CopyBack() const;
+
+  const NavBundleAdjustmentOptions& options_;
+  const std::vector<ImagePosePrior>& priors_;
+  const SoftRig* rig_;
+  Reconstruction* reconstruction_;
+
+  std::vector<PoseBlock> poses_;
+  std::unordered_map<image_t, size_t> image_index_;
+  std::unordered_map<point3D_t, Eigen::Vector3d> points_;
+  std::vector<std::vector<double>> camera_params_;
+  std::unordered_map<camera_t, size_t> camera_index_;
+  std::map<int, Eigen::Vector3d> dive_offsets_;
+  int reference_dive_ = 0;
+  std::vector<RigPairing> rig_pairings_;
+  size_t num_observations_ = 0;
+  double nav_sigma_m_ = 0.0;
+  double pixel_sigma_ = 1.0;
+
+  // Gauge without priors.
+  std::optional<size_t> fixed_pose_;
+  std::optional<std::pair<size_t, int>> fixed_translation_coordinate_;
+};
+
+Adjustment::Adjustment(const NavBundleAdjustmentOptions& options,
+                       const std::vector<ImagePosePrior>& priors,
+                       const SoftRig* rig,
+                       const std::unordered_map<image_t, double>& image_times,
+                       Reconstruction* reconstruction)
+    : options_(options),
+      priors_(priors),
+      rig_(rig),
+      reconstruction_(reconstruction) {
+  options_.Check();
+  IndexAndValidate();
+  if (rig_ != nullptr) PairRigImages(image_times);
+}
+
+void Adjustment::IndexAndValidate() {
+  const std::vector<Image>& images = reconstruction_->Images();
+  poses_.resize(images.size());
+  for (size_t i = 0; i < images.size(); ++i) {
+    const Image& image = images[i];
+    image_index_[image.image_id] = i;
+    const Eigen::Quaterniond q = image.cam_from_world.rotation.normalized();
+    poses_[i] = {{q.w(), q.x(), q.y(), q.z()},
+                 {image.cam_from_world.translation.x(),
+                  image.cam_from_world.translation.y(),
+                  image.cam_from_world.translation.z()}};
+    if (!image.cam_from_world.translation.allFinite() ||
+        !image.cam_from_world.rotation.coeffs().allFinite()) {
+      throw ErrorAt("image ", image.image_id, " (", image.name,
+                    ") has a non-finite pose");
+    }
+  }
+  for (size_t c = 0; c < reconstruction_->Cameras().size(); ++c) {
+    const Camera& camera = reconstruction_->Cameras()[c];
+    camera_index_[camera.camera_id] = c;
+    camera_params_.push_back(camera.params);
+  }
+  for (const Point3D& point : reconstruction_->Points3D()) {
+    points_[point.point3D_id] = point.xyz;
+  }
+  for (const Image& image : images) {
+    for (const Point2D& point2D : image.points2D) {
+      if (point2D.HasPoint3D()) ++num_observations_;
+    }
+  }
+  for (const Frame& frame : reconstruction_->Frames()) {
+    if (frame.data_ids.size() > 1) {
+      throw ErrorAt("frame ", frame.frame_id,
+                    " holds several images; models with multi-camera "
+                    "frames are not supported yet (give the rig as rig.json "
+                    "on a model without frames)");
+    }
+  }
+  if (num_observations_ == 0) {
+    throw ErrorAt("the model has no observations of 3D points");
+  }
+
+  std::set<image_t> seen;
+  std::set<int> dives;
+  for (const ImagePosePrior& prior : priors_) {
+    if (image_index_.count(prior.image_id) == 0) {
+      throw ErrorAt("a prior names image id ", prior.image_id,
+                    ", which is not in the model");
+    }
+    if (!seen.insert(prior.image_id).second) {
+      throw ErrorAt("image id ", prior.image_id, " has two priors");
+    }
+    if (!prior.position_in_world.allFinite()) {
+      throw ErrorAt("the prior of image id ", prior.image_id,
+                    " has a non-finite position");
+    }
+    try {
+      SqrtInformation(prior.position_covariance);
+      if (options_.use_attitude && prior.cam_from_world_rotation) {
+        SqrtInformation(prior.rotation_covariance);
+      }
+    } catch (const Error& error) {
+      throw ErrorAt("the prior of image id ", prior.image_id, ": ",
+                    error.what());
+    }
+    dives.insert(prior.dive);
+  }
+  if (!priors_.empty()) {
+    nav_sigma_m_ = NavSigma(priors_);
+    pixel_sigma_ = options_.weight_px_per_m * nav_sigma_m_;
+    reference_dive_ =
+        options_.reference_dive != 0 ? options_.reference_dive : *dives.begin();
+    if (options_.dive_offsets && dives.count(reference_dive_) == 0) {
+      throw ErrorAt("reference dive ", reference_dive_, " has no priors");
+    }
+    for (const int dive : dives) {
+      dive_offsets_[dive] = Eigen::Vector3d::Zero();
+    }
+  }
+  if (rig_ != nullptr) {
+    if (camera_index_.count(rig_->reference_camera_id) == 0) {
+      throw ErrorAt("the rig's reference camera ", rig_->reference_camera_id,
+                    " is not in the model");
+    }
+    for (const SoftRigCamera& camera : rig_->cameras) {
+      if (camera_index_.count(camera.camera_id) == 0) {
+        throw ErrorAt("the rig names camera ", camera.camera_id,
+                      ", which is not in the model");
+      }
+      if (!(camera.rotation_sigma_rad > 0.0 &&
+            camera.translation_sigma_m > 0.0)) {
+        throw ErrorAt("rig camera ", camera.camera_id,
+                      " needs positive rotation and translation sigmas");
+      }
+    }
+  }
+}
+
+void Adjustment::PairRigImages(
+    const std::unordered_map<image_t, double>& image_times) {
+  const std::vector<Image>& images = reconstruction_->Images();
+  const auto time_of = [&](const Image& image) {
+    const auto it = image_times.find(image.image_id);
+    if (it == image_times.end()) {
+      throw ErrorAt("rig image ", image.name,
+                    " has no time (give image times for rigs)");
+    }
+    return it->second;
+  };
+  // Reference images in time order.
+  std::vector<std::pair<double, size_t>> reference;
+  for (size_t i = 0; i < images.size(); ++i) {
+    if (images[i].camera_id == rig_->reference_camera_id) {
+      reference.emplace_back(time_of(images[i]), i);
+    }
+  }
+  std::sort(reference.begin(), reference.end());
+  const auto center = [&](size_t i) { return images[i].ProjectionCenter(); };
+  for (size_t i = 0; i < images.size(); ++i) {
+    const auto camera =
+        std::find_if(rig_->cameras.begin(), rig_->cameras.end(),
+                     [&](const SoftRigCamera& c) {
+                       return c.camera_id == images[i].camera_id;
+                     });
+    if (camera == rig_->cameras.end()) continue;
+    const double t = time_of(images[i]);
+    auto after =
+        std::upper_bound(reference.begin(), reference.end(), t,
+                         [](double value, const std::pair<double, size_t>& r) {
+                           return value < r.first;
+                         });
+    if (after == reference.begin()) continue;
+    const auto a = std::prev(after);
+    if (t - a->first > options_.rig_max_time_gap_s) continue;
+    RigPairing pairing;
+    pairing.cam_index = i;
+    pairing.camera = &*camera;
+    pairing.a_index = a->second;
+    if (options_.rig_interpolate_time) {
+      // The motion from a to the next reference image b, unless a ends a
+      // straight run (a line of a lawnmower): then a -> b is a turn, unlike
+      // both the segment before a and the one after b, and the motion at a
+      // is the one that led to a.
+      const bool has_next = after != reference.end();
+      const bool has_previous = a != reference.begin();
+      const bool has_next2 = has_next && std::next(after) != reference.end();
+      const auto agree = [&](size_t p, size_t q, size_t r) {
+        const Eigen::Vector3d first = center(q) - center(p);
+        const Eigen::Vector3d second = center(r) - center(q);
+        return first.dot(second) >= 0.5 * first.norm() * second.norm();
+      };
+      bool use_next = has_next;
+      if (has_next && has_previous) {
+        use_next = agree(std::prev(a)->second, a->second, after->second) ||
+                   (has_next2 &&
+                    agree(a->second, after->second, std::next(after)->second));
+      }
+      if (use_next) {
+        pairing.b_index = after->second;
+        pairing.alpha = (t - a->first) / (after->first - a->first);
+      } else if (has_previous) {
+        const auto p = std::prev(a);
+        pairing.b_index = a->second;
+        pairing.a_index = p->second;
+        pairing.alpha = (t - p->first) / (a->first - p->first);
+      }
+    }
+    rig_pairings_.push_back(pairing);
+  }
+}
+
+std::string Adjustment::ChooseGauge() {
+  if (!priors_.empty()) {
+    if (priors_.size() < 3) {
+      throw ErrorAt("navigation priors need at least 3 images; got ",
+                    priors_.size());
+    }
+    Eigen::MatrixXd centered(3, priors_.size());
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const ImagePosePrior& prior : priors_) mean += prior.position_in_world;
+    mean /= priors_.size();
+    for (size_t i = 0; i < priors_.size(); ++i) {
+      centered.col(i) = priors_[i].position_in_world - mean;
+    }
+    const Eigen::Vector3d singular =
+        Eigen::JacobiSVD<Eigen::MatrixXd>(centered).singularValues();
+    // The spread across the line of the priors must exceed their noise, or
+    // the rotation about that line is left to the noise.
+    const double across = singular(1) / std::sqrt(priors_.size());
+    if (!(across > 0.1 * nav_sigma_m_ && singular(1) > 1e-6 * singular(0))) {
+      throw ErrorAt(
+          "the ", priors_.size(),
+          " navigation priors are (nearly) collinear: RMS spread across "
+          "their line ",
+          across, " m vs prior sigma ", nav_sigma_m_,
+          " m; the rotation about that line is not determined");
+    }
+    return "navigation priors";
+  }
+  if (poses_.size() < 2) {
+    throw ErrorAt("bundle adjustment needs at least 2 images");
+  }
+  fixed_pose_ = 0;
+  if (rig_ != nullptr && !rig_pairings_.empty()) {
+    return "first image pose (rig baselines fix the scale)";
+  }
+  // Scaling about the first camera moves the second one's translation by
+  // -R_2 (c_2 - c_1); its largest coordinate is the one that pins the scale
+  // (COLMAP always fixes x, which does not when the baseline lies along
+  // the second camera's y or z axis).
+  const Image& first = reconstruction_->Images()[0];
+  const Image& second = reconstruction_->Images()[1];
+  const Eigen::Vector3d scale_direction =
+      second.cam_from_world.RotationMatrix() *
+      (second.ProjectionCenter() - first.ProjectionCenter());
+  int largest = 0;
+  scale_direction.cwiseAbs().maxCoeff(&largest);
+  fixed_translation_coordinate_ = std::make_pair(size_t{1}, largest);
+  return "first image pose + second image translation coordinate " +
+         std::to_string(largest);
+}
+
+void Adjustment::Build(
+    const Weights& weights, ceres::Problem* problem,
+    std::map<std::string, std::vector<ceres::ResidualBlockId>>* terms) {
+  const auto record = [&](const char* term, ceres::ResidualBlockId id) {
+    if (terms != nullptr) (*terms)[term].push_back(id);
+  };
+  const std::vector<Image>& images = reconstruction_->Images();
+  std::vector<PoseBlock>& poses = poses_;
+  std::map<int, Eigen::Vector3d>& offsets = dive_offsets_;
+
+  for (size_t i = 0; i < images.size(); ++i) {
+    const Image& image = images[i];
+    const Camera& camera =
+        reconstruction_->Cameras()[camera_index_.at(image.camera_id)];
+    double* params = camera_params_[camera_index_.at(image.camera_id)].data();
+    for (const Point2D& point2D : image.points2D) {
+      if (!point2D.HasPoint3D()) continue;
+      ceres::CostFunction* cost = VisitCameraModel(
+          camera.model_id, [&](auto tag) -> ceres::CostFunction* {
+            using Model = typename decltype(tag)::type;
+            return ReprojectionErrorCostFunctor<Model>::Create(
+                point2D.xy, weights.reprojection);
+          });
+      record("reprojection",
+             problem->AddResidualBlock(
+                 cost, MakeLoss(options_.loss, weights.reprojection_loss_scale),
+                 poses[i].rotation, poses[i].translation,
+                 points_.at(point2D.point3D_id).data(), params));
+    }
+  }
+
+  for (const ImagePosePrior& prior : priors_) {
+    PoseBlock& pose = poses[image_index_.at(prior.image_id)];
+    const int dive = options_.dive_offsets ? prior.dive : reference_dive_;
+    record("navigation_position",
+           problem->AddResidualBlock(
+               PositionPriorCostFunctor::Create(
+                   prior.position_in_world,
+                   weights.nav * SqrtInformation(prior.position_covariance)),
+               MakeLoss(options_.nav_loss, weights.nav_loss_scale),
+               pose.rotation, pose.translation, offsets.at(dive).data()));
+    if (options_.use_attitude && prior.cam_from_world_rotation) {
+      record("navigation_attitude",
+             problem->AddResidualBlock(
+                 AttitudePriorCostFunctor::Create(
+                     *prior.cam_from_world_rotation,
+                     weights.nav * SqrtInformation(prior.rotation_covariance)),
+                 MakeLoss(options_.nav_loss, weights.nav_loss_scale),
+                 pose.rotation));
+    }
+  }
+  if (options_.dive_offsets) {
+    for (auto& [dive, offset] : offsets) {
+      if (dive == reference_dive_) continue;
+      record("dive_offset_prior",
+             problem->AddResidualBlock(
+                 DiveOffsetPriorCostFunctor::Create(
+                     weights.nav / options_.dive_offset_sigma_m *
+                     Eigen::Matrix3d::Identity()),
+                 nullptr, offset.data()));
+    }
+  }
+
+  for (const RigPairing& pairing : rig_pairings_) {
+    const SoftRigCamera& camera = *pairing.camera;
+    RigCameraPrior prior;
+    prior.cam_from_rig = camera.cam_from_rig.rotation.normalized();
+    prior.cam_center_in_rig = camera.cam_from_rig.Inverse().translation;
+    prior.rotation_weight = weights.rig / camera.rotation_sigma_rad;
+    prior.translation_weight = weights.rig / camera.translation_sigma_m;
+    PoseBlock& cam = poses[pairing.cam_index];
+    PoseBlock& a = poses[pairing.a_index];
+    if (pairing.b_index) {
+      PoseBlock& b = poses[*pairing.b_index];
+      record("rig",
+             problem->AddResidualBlock(
+                 InterpolatedRigPriorCostFunctor::Create(prior, pairing.alpha),
+                 nullptr, a.rotation, a.translation, b.rotation, b.translation,
+                 cam.rotation, cam.translation));
+    } else {
+      record("rig", problem->AddResidualBlock(
+                        RigPriorCostFunctor::Create(prior), nullptr, a.rotation,
+                        a.translation, cam.rotation, cam.translation));
+    }
+  }
+  SetManifoldsAndConstants(problem);
+}
+
+void Adjustment::SetManifoldsAndConstants(ceres::Problem* problem) {
+  std::vector<PoseBlock>& poses = poses_;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    if (!problem->HasParameterBlock(poses[i].rotation)) continue;
+    problem->SetManifold(poses[i].rotation, new ceres::QuaternionManifold);
+    if (!options_.refine_extrinsics || fixed_pose_ == i) {
+      problem->SetParameterBlockConstant(poses[i].rotation);
+      problem->SetParameterBlockConstant(poses[i].translation);
+    } else if (fixed_translation_coordinate_ &&
+               fixed_translation_coordinate_->first == i) {
+      problem->SetManifold(poses[i].translation,
+                           new ceres::SubsetManifold(
+                               3, {fixed_translation_coordinate_->second}));
+    }
+  }
+  for (size_t c = 0; c < camera_params_.size(); ++c) {
+    double* params = camera_params_[c].data();
+    if (!problem->HasParameterBlock(params)) continue;
+    const Camera& camera = reconstruction_->Cameras()[c];
+    std::vector<int> constant;
+    VisitCameraModel(camera.model_id, [&](auto tag) {
+      using Model = typename decltype(tag)::type;
+      if (!options_.refine_focal_length) {
+        constant.insert(constant.end(), Model::kFocalLengthIdxs.begin(),
+                        Model::kFocalLengthIdxs.end());
+      }
+      if (!options_.refine_principal_point) {
+        constant.insert(constant.end(), Model::kPrincipalPointIdxs.begin(),
+                        Model::kPrincipalPointIdxs.end());
+      }
+      if (!options_.refine_extra_params) {
+        constant.insert(constant.end(), Model::kExtraParamsIdxs.begin(),
+                        Model::kExtraParamsIdxs.end());
+      }
+    });
+    if (constant.size() == camera_params_[c].size()) {
+      problem->SetParameterBlockConstant(params);
+    } else if (!constant.empty()) {
+      problem->SetManifold(
+          params, new ceres::SubsetManifold(
+                      static_cast<int>(camera_params_[c].size()), constant));
+    }
+  }
+  const auto reference = dive_offsets_.find(reference_dive_);
+  if (reference != dive_offsets_.end() &&
+      problem->HasParameterBlock(reference->second.data())) {
+    problem->SetParameterBlockConstant(reference->second.data());
+  }
+}
+
+std::map<std::string, CostTerm> Adjustment::EvaluateTerms(
+    ceres::Problem* problem,
+    const std::map<std::string, std::vector<ceres::ResidualBlockId>>& terms)
+    const {
+  std::map<std::string, CostTerm> result;
+  for (const auto& [name, blocks] : terms) {
+    ceres::Problem::EvaluateOptions evaluate;
+    evaluate.residual_blocks = blocks;
+    evaluate.apply_loss_function = true;
+    double cost = 0.0;
+    problem->Evaluate(evaluate, &cost, nullptr, nullptr, nullptr);
+    CostTerm& term = result[name];
+    term.num_residual_blocks = static_cast<int>(blocks.size());
+    term.weighted_cost = cost;
+  }
+  // Unweighted mean squares, from the parameter values directly.
+  const std::vector<Image>& images = reconstruction_->Images();
+  if (result.count("reprojection") != 0) {
+    double sum = 0.0;
+    for (size_t i = 0; i < images.size(); ++i) {
+      const Camera& camera =
+          reconstruction_->Cameras()[camera_index_.at(images[i].camera_id)];
+      const double* params =
+          camera_params_[camera_index_.at(images[i].camera_id)].data();
+      const PoseBlock& pose = poses_[i];
+      for (const Point2D& point2D : images[i].points2D) {
+        if (!point2D.HasPoint3D()) continue;
+        Eigen::Vector2d residual;
+        VisitCameraModel(camera.model_id, [&](auto tag) {
+          using Model = typename decltype(tag)::type;
+          ReprojectionErrorCostFunctor<Model>(point2D.xy, 1.0)(
+              pose.rotation, pose.translation,
+              points_.at(point2D.point3D_id).data(), params, residual.data());
+        });
+        sum += residual.squaredNorm();
+      }
+    }
+    result["reprojection"].mean_squared = sum / num_observations_;
+  }
+  if (result.count("navigation_position") != 0) {
+    double sum = 0.0;
+    for (const ImagePosePrior& prior : priors_) {
+      const PoseBlock& pose = poses_[image_index_.at(prior.image_id)];
+      const int dive = options_.dive_offsets ? prior.dive : reference_dive_;
+      Eigen::Vector3d residual;
+      PositionPriorCostFunctor(prior.position_in_world,
+                               Eigen::Matrix3d::Identity())(
+          pose.rotation, pose.translation, dive_offsets_.at(dive).data(),
+          residual.data());
+      sum += residual.squaredNorm();
+    }
+    result["navigation_position"].mean_squared = sum / priors_.size();
+  }
+  return result;
+}
+
+void Adjustment::EstimateOffsetCovariance(NavBundleAdjustmentReport* report) {
+  const auto start = Clock::now();
+  // Statistical weights: pixels by the reprojection RMS per coordinate,
+  // priors and rig by their stated sigmas.
+  const double rms_px =
+      std::sqrt(report->final_terms.at("reprojection").mean_squared / 2.0);
+  Weights weights;
+  weights.reprojection = 1.0 / std::max(rms_px, 1e-6);
+  weights.reprojection_loss_scale = options_.loss_scale_px / rms_px;
+  weights.nav = 1.0;
+  weights.nav_loss_scale = options_.nav_loss_scale;
+  weights.rig = 1.0;
+  ceres::Problem::Options problem_options;
+  problem_options.manifold_ownership = ceres::TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  Build(weights, &problem, nullptr);
+
+  ceres::Covariance::Options covariance_options;
+  covariance_options.num_threads =
+      options_.num_threads > 0
+          ? options_.num_threads
+          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  ceres::Covariance covariance(covariance_options);
+  std::vector<std::pair<const double*, const double*>> blocks;
+  for (const auto& [dive, offset] : dive_offsets_) {
+    if (dive != reference_dive_)
+      blocks.emplace_back(offset.data(), offset.data());
+  }
+  if (!covariance.Compute(blocks, &problem)) {
+    report->covariance_note =
+        "covariance not computed: the problem is rank deficient (check that "
+        "every dive overlaps another one)";
+  } else {
+    for (DiveOffsetEstimate& estimate : report->dive_offsets) {
+      if (estimate.dive == reference_dive_) continue;
+      Eigen::Matrix<double, 3, 3, Eigen::RowMajor> block;
+      covariance.GetCovarianceBlock(dive_offsets_.at(estimate.dive).data(),
+                                    dive_offsets_.at(estimate.dive).data(),
+                                    block.data());
+      estimate.covariance = block;
+    }
+    report->covariance_note =
+        "Ceres covariance of the offsets with each residual weighted by its "
+        "own sigma (reprojection RMS " +
+        std::to_string(rms_px) + " px per coordinate)";
+  }
+  report->covariance_time_s =
+      std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void Adjustment::FillPriorResiduals(NavBundleAdjustmentReport* report) const {
+  for (const ImagePosePrior& prior : priors_) {
+    const PoseBlock& pose = poses_[image_index_.at(prior.image_id)];
+    const int dive = options_.dive_offsets ? prior.dive : reference_dive_;
+    PriorResidual residual;
+    residual.image_id = prior.image_id;
+    residual.dive = prior.dive;
+    PositionPriorCostFunctor(prior.position_in_world,
+                             Eigen::Matrix3d::Identity())(
+        pose.rotation, pose.translation, dive_offsets_.at(dive).data(),
+        residual.error_in_world.data());
+    residual.mahalanobis =
+        (SqrtInformation(prior.position_covariance) * residual.error_in_world)
+            .norm();
+    if (prior.cam_from_world_rotation) {
+      Eigen::Vector3d rotation_vector;
+      AttitudePriorCostFunctor(*prior.cam_from_world_rotation,
+                               Eigen::Matrix3d::Identity())(
+          pose.rotation, rotation_vector.data());
+      residual.attitude_error_deg = rotation_vector.norm() * 180.0 / M_PI;
+    }
+    report->prior_residuals.push_back(residual);
+  }
+}
+
+void Adjustment::CopyBack() const {
+  std::vector<Image>& images = reconstruction_->Images();
+  for (size_t i = 0; i < images.size(); ++i) {
+    const PoseBlock& pose = poses_[i];
+    images[i].cam_from_world.rotation = Eigen::Quaterniond(
+        pose.rotation[0], pose.rotation[1], pose.rotation[2], pose.rotation[3]);
+    images[i].cam_from_world.translation =
+        Eigen::Map<const Eigen::Vector3d>(pose.translation);
+  }
+  for (size_t c = 0; c < camera_params_.size(); ++c) {
+    reconstruction_->Cameras()[c].params = camera_params_[c];
+  }
+  // Each point's error: the mean reprojection error over its track, as
+  // COLMAP stores it.
+  for (Point3D& point : reconstruction_->Points3D()) {
+    point.xyz = points_.at(point.point3D_id);
+    if (point.track.empty()) continue;
+    double sum = 0.0;
+    for (const TrackElement& element : point.track) {
+      const size_t i = image_index_.at(element.image_id);
+      const Image& image = images[i];
+      const size_t c = camera_index_.at(image.camera_id);
+      Eigen::Vector2d residual;
+      VisitCameraModel(reconstruction_->Cameras()[c].model_id, [&](auto tag) {
+        using Model = typename decltype(tag)::type;
+        ReprojectionErrorCostFunctor<Model>(
+            image.points2D.at(element.point2D_idx).xy, 1.0)(
+            poses_[i].rotation, poses_[i].translation, point.xyz.data(),
+            camera_params_[c].data(), residual.data());
+      });
+      sum += residual.norm();
+    }
+    point.error = sum / point.track.size();
+  }
+  // COLMAP 4.x layout: a frame of a one-camera rig holds that camera's
+  // pose.
+  for (Frame& frame : reconstruction_->Frames()) {
+    if (frame.data_ids.size() != 1) continue;
+    const Image* image =
+        reconstruction_->FindImage(static_cast<image_t>(frame.data_ids[0].id));
+    if (image != nullptr) frame.rig_from_world = image->cam_from_world;
+  }
+}
+
+NavBundleAdjustmentReport Adjustment::Run() {
+  NavBundleAdjustmentReport report;
+  report.gauge = ChooseGauge();
+  report.num_images = static_cast<int>(poses_.size());
+  report.num_points = static_cast<int>(points_.size());
+  report.num_observations = static_cast<int>(num_observations_);
+  report.nav_sigma_m = nav_sigma_m_;
+  report.weight_px_per_m = priors_.empty() ? 0.0 : options_.weight_px_per_m;
+
+  // Eq. 2: reprojections by 1/sqrt(M); priors (in sigmas) by
+  // lambda sigma_n / sqrt(N); rig terms (in sigmas) by sigma_v / sqrt(N_rig).
+  Weights weights;
+  weights.reprojection =
+      1.0 / std::sqrt(static_cast<double>(num_observations_));
+  weights.reprojection_loss_scale =
+      options_.loss_scale_px * weights.reprojection;
+  if (!priors_.empty()) {
+    weights.nav = options_.weight_px_per_m * nav_sigma_m_ /
+                  std::sqrt(static_cast<double>(priors_.size()));
+    weights.nav_loss_scale = options_.nav_loss_scale * weights.nav;
+  }
+  if (!rig_pairings_.empty()) {
+    if (priors_.empty()) {
+      double sum = 0.0;
+      for (const Point3D& point : reconstruction_->Points3D()) {
+        if (point.HasError()) sum += point.error * point.error;
+      }
+      pixel_sigma_ =
+          reconstruction_->Points3D().empty()
+              ? 1.0
+              : std::max(0.05,
+                         std::sqrt(sum / reconstruction_->Points3D().size()));
+    }
+    weights.rig =
+        pixel_sigma_ / std::sqrt(static_cast<double>(rig_pairings_.size()));
+  }
+
+  ceres::Problem::Options problem_options;
+  ceres::Problem problem(problem_options);
+  std::map<std::string, std::vector<ceres::ResidualBlockId>> terms;
+  Build(weights, &problem, &terms);
+  report.initial_terms = EvaluateTerms(&problem, terms);
+
+  ceres::Solver::Options solver_options;
+  // As COLMAP 3.8's BundleAdjuster: dense Schur up to 50 images, sparse
+  // Schur up to 1000, iterative beyond.
+  if (poses_.size() <= 50) {
+    solver_options.linear_solver_type = ceres::DENSE_SCHUR;
+  } else if (poses_.size() <= 1000) {
+    solver_options.linear_solver_type = ceres::SPARSE_SCHUR;
+  } else {
+    solver_options.linear_solver_type = ceres::ITERATIVE_SCHUR;
+    solver_options.preconditioner_type = ceres::SCHUR_JACOBI;
+  }
+  solver_options.max_num_iterations = options_.max_num_iterations;
+  solver_options.max_linear_solver_iterations =
+      options_.max_linear_solver_iterations;
+  solver_options.function_tolerance = options_.function_tolerance;
+  solver_options.gradient_tolerance = options_.gradient_tolerance;
+  solver_options.parameter_tolerance = options_.parameter_tolerance;
+  solver_options.max_num_consecutive_invalid_steps = 10;
+  solver_options.max_consecutive_nonmonotonic_steps = 10;
+  solver_options.num_threads =
+      options_.num_threads > 0
+          ? options_.num_threads
+          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  ceres::Solver::Summary summary;
+  const auto start = Clock::now();
+  ceres::Solve(solver_options, &problem, &summary);
+  report.solve_time_s =
+      std::chrono::duration<double>(Clock::now() - start).count();
+  if (summary.termination_type == ceres::FAILURE) {
+    throw ErrorAt("bundle adjustment failed: ", summary.message);
+  }
+  report.num_iterations = static_cast<int>(summary.iterations.size()) - 1;
+  report.termination = ceres::TerminationTypeToString(summary.termination_type);
+  report.solver = std::string(ceres::LinearSolverTypeToString(
+                      summary.linear_solver_type_used)) +
+                  ", " + std::to_string(summary.num_threads_used) + " threads";
+  report.final_terms = EvaluateTerms(&problem, terms);
+
+  for (const auto& [dive, offset] : dive_offsets_) {
+    DiveOffsetEstimate estimate;
+    estimate.dive = dive;
+    estimate.offset_in_world = offset;
+    for (const ImagePosePrior& prior : priors_) {
+      if (prior.dive == dive) ++estimate.num_images;
+    }
+    report.dive_offsets.push_back(estimate);
+  }
+  if (options_.dive_offsets && options_.estimate_offset_covariance &&
+      dive_offsets_.size() > 1) {
+    EstimateOffsetCovariance(&report);
+  }
+  FillPriorResiduals(&report);
+  CopyBack();
+  return report;
+}
+
+}  // namespace
+
+NavBundleAdjustmentReport AdjustWithNavigation(
+    const NavBundleAdjustmentOptions& options,
+    const std::vector<ImagePosePrior>& priors, const SoftRig* rig,
+    const std::unordered_map<image_t, double>& image_times,
+    Reconstruction* reconstruction) {
+  Adjustment adjustment(options, priors, rig, image_times, reconstruction);
+  return adjustment.Run();
+}
+
+}  // namespace uw

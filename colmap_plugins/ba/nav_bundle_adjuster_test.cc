@@ -1,0 +1,157 @@
+#include "colmap_plugins/ba/nav_bundle_adjuster.h"
+
+#include <cmath>
+#include <iostream>
+
+#include <gtest/gtest.h>
+
+#include "colmap_plugins/ba/test_scene.h"
+#include "colmap_plugins/util/error.h"
+
+namespace uw {
+namespace {
+
+NavBundleAdjustmentOptions FixedIntrinsics() {
+  NavBundleAdjustmentOptions options;
+  options.refine_focal_length = false;
+  options.refine_extra_params = false;
+  options.num_threads = 1;
+  return options;
+}
+
+TEST(NavBundleAdjuster, WithoutPriorsFixesSevenDofAndReachesTheNoiseFloor) {
+  test::TestSceneOptions scene_options;
+  const test::TestScene scene = test::MakeTestScene(scene_options);
+  Reconstruction model = scene.observed;
+  test::Perturb(0.02, 0.005, 7, &model);
+  // The gauge COLMAP fixes: the first pose and one coordinate of the
+  // second camera's translation, here taken from the truth.
+  model.Images()[0].cam_from_world = scene.truth.Images()[0].cam_from_world;
+  model.Images()[1].cam_from_world = scene.truth.Images()[1].cam_from_world;
+  const Rigid3d first_before = model.Images()[0].cam_from_world;
+
+  const NavBundleAdjustmentReport report =
+      AdjustWithNavigation(FixedIntrinsics(), {}, nullptr, {}, &model);
+  const double rms_px =
+      std::sqrt(report.final_terms.at("reprojection").mean_squared / 2.0);
+  const double rmse = test::CameraCenterRmse(model, scene.truth);
+  std::cout << "[ figures ] no priors: reprojection RMS " << rms_px
+            << " px per coordinate (sigma 0.5), camera RMSE " << rmse * 1000
+            << " mm, " << report.num_iterations
+            << " iterations, gauge: " << report.gauge << "\n";
+  EXPECT_NEAR(rms_px, scene_options.pixel_sigma, 0.05);
+  EXPECT_LT(rmse, 0.01);
+  EXPECT_EQ(model.Images()[0].cam_from_world.translation,
+            first_before.translation);
+  EXPECT_EQ(model.Images()[0].cam_from_world.rotation.coeffs(),
+            first_before.rotation.normalized().coeffs());
+  EXPECT_EQ(report.final_terms.count("navigation_position"), 0u);
+}
+
+TEST(NavBundleAdjuster, PriorsPlaceTheModelInTheWorld) {
+  test::TestSceneOptions scene_options;
+  const test::TestScene scene = test::MakeTestScene(scene_options);
+  Reconstruction model = scene.observed;
+  test::Perturb(0.1, 0.01, 8, &model);
+  NavBundleAdjustmentOptions options = FixedIntrinsics();
+  options.weight_px_per_m =
+      scene_options.pixel_sigma / scene_options.nav_sigma_m;
+  const NavBundleAdjustmentReport report =
+      AdjustWithNavigation(options, scene.priors, nullptr, {}, &model);
+  const double rmse = test::CameraCenterRmse(model, scene.truth);
+  // The priors' mean error over N images bounds the translation error.
+  const double expected = scene_options.nav_sigma_m /
+                          std::sqrt(static_cast<double>(scene.priors.size()));
+  std::cout << "[ figures ] priors sigma " << scene_options.nav_sigma_m
+            << " m over " << scene.priors.size() << " images: camera RMSE "
+            << rmse * 1000 << " mm (sigma/sqrt(N) = " << expected * 1000
+            << " mm), nav RMS "
+            << std::sqrt(
+                   report.final_terms.at("navigation_position").mean_squared)
+            << " m\n";
+  EXPECT_EQ(report.gauge, "navigation priors");
+  EXPECT_LT(rmse, 4.0 * expected);
+  EXPECT_EQ(report.prior_residuals.size(), scene.priors.size());
+}
+
+TEST(NavBundleAdjuster, DiveOffsetsRecoverTheBiasWithinTheirCovariance) {
+  test::TestSceneOptions scene_options;
+  scene_options.num_lines = 4;
+  scene_options.first_line_of_dive_2 = 2;
+  scene_options.dive2_bias = Eigen::Vector3d(2.5, -2.0, 0.1);
+  scene_options.nav_sigma_m = 0.1;
+  const test::TestScene scene = test::MakeTestScene(scene_options);
+  NavBundleAdjustmentOptions options = FixedIntrinsics();
+  options.weight_px_per_m =
+      scene_options.pixel_sigma / scene_options.nav_sigma_m;
+
+  Reconstruction without = scene.observed;
+  const NavBundleAdjustmentReport plain =
+      AdjustWithNavigation(options, scene.priors, nullptr, {}, &without);
+  Reconstruction with = scene.observed;
+  options.dive_offsets = true;
+  const NavBundleAdjustmentReport report =
+      AdjustWithNavigation(options, scene.priors, nullptr, {}, &with);
+
+  ASSERT_EQ(report.dive_offsets.size(), 2u);
+  const DiveOffsetEstimate& offset = report.dive_offsets[1];
+  ASSERT_EQ(offset.dive, 2);
+  ASSERT_TRUE(offset.covariance.has_value()) << report.covariance_note;
+  // The prior residual is centre - (nav + offset); nav = truth + bias, so
+  // the offset estimates -bias.
+  const Eigen::Vector3d error =
+      offset.offset_in_world + scene_options.dive2_bias;
+  const Eigen::Vector3d sigma = offset.covariance->diagonal().cwiseSqrt();
+  std::cout
+      << "[ figures ] dive offset " << offset.offset_in_world.transpose()
+      << " m, true " << (-scene_options.dive2_bias).transpose() << ", error "
+      << error.transpose() * 100 << " cm, sigma " << sigma.transpose() * 100
+      << " cm; camera RMSE with offsets "
+      << test::CameraCenterRmse(with, scene.truth) * 100 << " cm, without "
+      << test::CameraCenterRmse(without, scene.truth) * 100
+      << " cm; nav RMS with "
+      << std::sqrt(report.final_terms.at("navigation_position").mean_squared)
+      << " m, without "
+      << std::sqrt(plain.final_terms.at("navigation_position").mean_squared)
+      << " m\n";
+  EXPECT_LT(error.norm(), 0.05);
+  for (int i = 0; i < 3; ++i) EXPECT_LT(std::abs(error(i)), 3.0 * sigma(i));
+  EXPECT_LT(test::CameraCenterRmse(with, scene.truth),
+            0.2 * test::CameraCenterRmse(without, scene.truth));
+}
+
+TEST(NavBundleAdjuster, RejectsTooFewOrCollinearPriorsAndUnknownImages) {
+  const test::TestScene scene = test::MakeTestScene({});
+  Reconstruction model = scene.observed;
+  std::vector<ImagePosePrior> two(scene.priors.begin(),
+                                  scene.priors.begin() + 2);
+  EXPECT_THROW(
+      AdjustWithNavigation(FixedIntrinsics(), two, nullptr, {}, &model), Error);
+  // The first line's cameras lie along x: collinear within the prior noise.
+  std::vector<ImagePosePrior> line(scene.priors.begin(),
+                                   scene.priors.begin() + 8);
+  for (ImagePosePrior& prior : line) {
+    prior.position_in_world.y() = 0.0;
+    prior.position_in_world.z() = 3.0;
+  }
+  try {
+    AdjustWithNavigation(FixedIntrinsics(), line, nullptr, {}, &model);
+    ADD_FAILURE() << "collinear priors accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("collinear"), std::string::npos);
+  }
+  std::vector<ImagePosePrior> unknown = scene.priors;
+  unknown[3].image_id = 999;
+  EXPECT_THROW(
+      AdjustWithNavigation(FixedIntrinsics(), unknown, nullptr, {}, &model),
+      Error);
+  std::vector<ImagePosePrior> nan = scene.priors;
+  nan[2].position_in_world.x() = NAN;
+  EXPECT_THROW(
+      AdjustWithNavigation(FixedIntrinsics(), nan, nullptr, {}, &model), Error);
+  // Nothing was changed by the failed calls.
+  EXPECT_EQ(test::CameraCenterRmse(model, scene.observed), 0.0);
+}
+
+}  // namespace
+}  // namespace uw

@@ -1,0 +1,127 @@
+#include "colmap_plugins/ba/nav_inputs.h"
+
+#include <cmath>
+#include <unordered_map>
+
+#include <Eigen/Eigenvalues>
+
+#include "colmap_plugins/util/error.h"
+
+namespace uw {
+namespace {
+
+bool IsPositiveDefinite(const Eigen::Matrix3d& covariance) {
+  return covariance.allFinite() &&
+         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance)
+                 .eigenvalues()
+                 .minCoeff() > 0.0;
+}
+
+Eigen::Matrix3d PositionCovariance(const Eigen::Matrix3d& stated,
+                                   double override_sigma_m, bool override_all,
+                                   const std::string& image_name) {
+  if (!override_all && IsPositiveDefinite(stated)) return stated;
+  if (!(override_sigma_m > 0.0)) {
+    throw ErrorAt("the prior of image ", image_name,
+                  " has no positive-definite position covariance (a zero "
+                  "sigma in the log?); give --Nav.position_sigma");
+  }
+  return override_sigma_m * override_sigma_m * Eigen::Matrix3d::Identity();
+}
+
+std::unordered_map<std::string, const Image*> ImagesByName(
+    const Reconstruction& model) {
+  std::unordered_map<std::string, const Image*> images;
+  for (const Image& image : model.Images()) images[image.name] = &image;
+  return images;
+}
+
+}  // namespace
+
+NavInputs NavInputsForModel(const std::vector<CameraPrior>& priors,
+                            const RigConfig* rig, const Reconstruction& model,
+                            double position_sigma_override_m, bool override_all,
+                            double rig_rotation_sigma_deg,
+                            double rig_translation_sigma_m) {
+  const auto images = ImagesByName(model);
+  NavInputs inputs;
+  for (const CameraPrior& camera_prior : priors) {
+    const auto it = images.find(camera_prior.image_name);
+    if (it == images.end()) {
+      ++inputs.num_priors_without_image;
+      continue;
+    }
+    ImagePosePrior prior;
+    prior.image_id = it->second->image_id;
+    prior.dive = camera_prior.dive;
+    prior.position_in_world = camera_prior.position;
+    prior.position_covariance = PositionCovariance(
+        camera_prior.position_covariance, position_sigma_override_m,
+        override_all, camera_prior.image_name);
+    prior.cam_from_world_rotation = camera_prior.cam_from_world_rotation;
+    prior.rotation_covariance = camera_prior.rotation_covariance;
+    if (!IsPositiveDefinite(prior.rotation_covariance)) {
+      prior.cam_from_world_rotation.reset();
+    }
+    inputs.priors.push_back(prior);
+    inputs.image_times[prior.image_id] = camera_prior.time_s;
+  }
+  if (rig != nullptr) {
+    inputs.rig = SoftRigFromConfig(*rig, rig_rotation_sigma_deg,
+                                   rig_translation_sigma_m);
+  }
+  return inputs;
+}
+
+NavInputs NavInputsFromDatabase(const std::vector<PosePrior>& priors,
+                                const Reconstruction& model,
+                                double position_sigma_override_m,
+                                bool override_all) {
+  NavInputs inputs;
+  for (const PosePrior& database_prior : priors) {
+    const Image* image = model.FindImage(database_prior.image_id);
+    if (image == nullptr || !database_prior.HasPosition()) {
+      ++inputs.num_priors_without_image;
+      continue;
+    }
+    if (database_prior.coordinate_system == PosePriorCoordinateSystem::kWGS84) {
+      throw ErrorAt("the database prior of image ", image->name,
+                    " is in WGS84 (latitude, longitude); the bundle adjuster "
+                    "needs metric (cartesian) priors");
+    }
+    ImagePosePrior prior;
+    prior.image_id = image->image_id;
+    prior.position_in_world = database_prior.position;
+    prior.position_covariance = PositionCovariance(
+        database_prior.HasPositionCovariance()
+            ? database_prior.position_covariance
+            : Eigen::Matrix3d::Zero(),
+        position_sigma_override_m, override_all, image->name);
+    inputs.priors.push_back(prior);
+  }
+  return inputs;
+}
+
+SoftRig SoftRigFromConfig(const RigConfig& rig, double rotation_sigma_deg,
+                          double translation_sigma_m) {
+  rig.Check();
+  SoftRig soft;
+  soft.reference_camera_id = rig.cameras.front().camera_id;
+  for (size_t i = 1; i < rig.cameras.size(); ++i) {
+    const RigCameraConfig& camera = rig.cameras[i];
+    SoftRigCamera soft_camera;
+    soft_camera.camera_id = camera.camera_id;
+    soft_camera.cam_from_rig = camera.cam_from_rig;
+    soft_camera.rotation_sigma_rad =
+        (camera.rotation_sigma_deg > 0.0 ? camera.rotation_sigma_deg
+                                         : rotation_sigma_deg) *
+        M_PI / 180.0;
+    soft_camera.translation_sigma_m = camera.translation_sigma_m > 0.0
+                                          ? camera.translation_sigma_m
+                                          : translation_sigma_m;
+    soft.cameras.push_back(soft_camera);
+  }
+  return soft;
+}
+
+}  // namespace uw

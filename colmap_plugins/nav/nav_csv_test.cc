@@ -1,0 +1,134 @@
+#include "colmap_plugins/nav/nav_csv.h"
+
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "colmap_plugins/util/error.h"
+#include "tests/support/process.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kDegToRad = M_PI / 180.0;
+const std::string kHeader =
+    "image_name,time,dive,x,y,z,roll,pitch,yaw,std_x,std_y,std_z,std_roll,"
+    "std_pitch,std_yaw\n";
+
+class NavCsvTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    path_ = testing::FreshTestDir("uw_nav_csv_test") / "nav.csv";
+  }
+
+  std::vector<NavRecord> Read(const std::string& text) {
+    std::ofstream(path_, std::ios::binary) << text;
+    return ReadNavigationCsv(path_);
+  }
+
+  std::string Error(const std::string& text) {
+    try {
+      Read(text);
+    } catch (const uw::Error& error) {
+      return error.what();
+    }
+    return "no error";
+  }
+
+  fs::path path_;
+};
+
+// A row of uwsim's nav.csv: angles in degrees become radians.
+TEST_F(NavCsvTest, ReadsUwsimsLog) {
+  const std::vector<NavRecord> nav =
+      Read("# uwsim navigation: ...\n" + kHeader +
+           "cam1/00000.png,0,1,-7.1058713602344072,-4.52,2.67,1.3795,-0.0287,"
+           "-0.3860,0.9731,0.9731,0.02,0.05,0.05,0.2\n"
+           "cam1/00001.png,1.5,1,-6,-4.5,2.6,0,0,90,1,1,0.02,0.05,0.05,0.2\n"
+           "cam1/00002.png,0.5,2,-6,-4.5,2.6,0,0,90,1,1,0.02,0.05,0.05,0.2\n");
+  ASSERT_EQ(nav.size(), 3u);
+  const NavRecord& row = nav[0];
+  EXPECT_EQ(row.image_name, "cam1/00000.png");
+  EXPECT_EQ(row.time_s, 0.0);
+  EXPECT_EQ(row.dive, 1);
+  EXPECT_EQ(row.position, Eigen::Vector3d(-7.1058713602344072, -4.52, 2.67));
+  EXPECT_EQ(row.rpy_rad, Eigen::Vector3d(1.3795, -0.0287, -0.3860) * kDegToRad);
+  EXPECT_EQ(row.position_sigma, Eigen::Vector3d(0.9731, 0.9731, 0.02));
+  EXPECT_EQ(row.rpy_sigma_rad, Eigen::Vector3d(0.05, 0.05, 0.2) * kDegToRad);
+  EXPECT_EQ(row.line, 3);
+  EXPECT_EQ(nav[1].rpy_rad.z(), M_PI / 2);
+  // Time runs per dive: dive 2 may start before dive 1 ends.
+  EXPECT_EQ(nav[2].dive, 2);
+}
+
+// A log sampled at its own times: no image names, one dive.
+TEST_F(NavCsvTest, ImageNameAndDiveColumnsAreOptional) {
+  const std::vector<NavRecord> nav = Read(
+      "yaw,time,x,y,z,roll,pitch,std_x,std_y,std_z,std_roll,std_pitch,"
+      "std_yaw\n"
+      "10,0.1,1,2,3,4,5,0,0,0,0,0,0\n"
+      "11,0.2,1,2,3,4,5,0,0,0,0,0,0\n");
+  ASSERT_EQ(nav.size(), 2u);
+  EXPECT_EQ(nav[1].image_name, "");
+  EXPECT_EQ(nav[1].dive, 1);
+  EXPECT_EQ(nav[1].rpy_rad, Eigen::Vector3d(4, 5, 11) * kDegToRad);
+  EXPECT_EQ(nav[1].position, Eigen::Vector3d(1, 2, 3));
+}
+
+TEST_F(NavCsvTest, BadRowsNameFileAndLine) {
+  const std::string good = "a.png,0,1,4,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n";
+  const std::string where = path_.string() + ":";
+  const struct {
+    std::string text;
+    std::string message;
+  } cases[] = {
+      {kHeader + good + "b.png,1,1,9,2\n", where + "3: expected 15 fields"},
+      {kHeader + "b.png,1,1,9,nan,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n",
+       where + "2: y must be a finite number, got 'nan'"},
+      {kHeader + "b.png,1,1,9,2,3,0,0,-inf,1,1,0.02,0.05,0.05,0.2\n",
+       where + "2: yaw must be a finite number, got '-inf'"},
+      {kHeader + "b.png,1,1,9,2,3,0,0,0,1,-1,0.02,0.05,0.05,0.2\n",
+       where + "2: std_y must be >= 0, got '-1'"},
+      {kHeader + "b.png,1,1,9,2,3,0,0,0,1,1,0.02,0.05,-0.05,0.2\n",
+       where + "2: std_pitch must be >= 0"},
+      {kHeader + "b.png,1,0,9,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n",
+       where + "2: dive must be an integer >= 1, got '0'"},
+      {kHeader + ",1,1,9,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n",
+       where + "2: empty image_name"},
+      {kHeader + good + "\n" + good,
+       where + "4: image 'a.png' already has a row at line 2"},
+      {kHeader + good + "b.png,0,1,4,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n",
+       where + "3: time 0 s is not after the previous row of dive 1 (line 2, 0 "
+               "s); the rows of a dive must come in strictly increasing time"},
+      {kHeader + "a.png,5,1,4,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n" +
+           "b.png,6,2,4,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n" +
+           "c.png,4,1,4,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n",
+       where + "4: time 4 s is not after the previous row of dive 1 (line 2"},
+      {"image_name,time,x,y,z\n", where + "1: expected the header "},
+      {"# no header\n" + good, where + "2: expected the header"},
+      {kHeader, path_.string() + ": no navigation rows"},
+      {"", path_.string() + ": no header row"},
+  };
+  for (const auto& test : cases) {
+    const std::string message = Error(test.text);
+    EXPECT_EQ(message.substr(0, test.message.size()), test.message)
+        << "for:\n"
+        << test.text;
+  }
+}
+
+TEST_F(NavCsvTest, MissingFileIsNamed) {
+  try {
+    ReadNavigationCsv(path_);
+    ADD_FAILURE() << "no error";
+  } catch (const uw::Error& error) {
+    EXPECT_EQ(std::string(error.what()),
+              path_.string() + ": cannot open for reading");
+  }
+}
+
+}  // namespace
+}  // namespace uw

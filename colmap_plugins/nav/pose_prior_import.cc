@@ -1,0 +1,198 @@
+#include "colmap_plugins/nav/pose_prior_import.h"
+
+#include <algorithm>
+#include <set>
+#include <unordered_map>
+
+#include <Eigen/Eigenvalues>
+
+#include "colmap_plugins/nav/image_times.h"
+#include "colmap_plugins/nav/nav_csv.h"
+#include "colmap_plugins/nav/rig_config.h"
+#include "colmap_plugins/util/error.h"
+
+namespace uw {
+namespace {
+
+bool IsPositiveDefinite(const Eigen::Matrix3d& covariance) {
+  const Eigen::Vector3d eigenvalues =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance,
+                                                     Eigen::EigenvaluesOnly)
+          .eigenvalues();
+  return eigenvalues.minCoeff() > 1e-12 * eigenvalues.maxCoeff();
+}
+
+std::string CameraIds(const std::vector<DatabaseCamera>& cameras) {
+  std::string ids;
+  for (const DatabaseCamera& camera : cameras) {
+    ids += (ids.empty() ? "" : ", ") + std::to_string(camera.camera_id);
+  }
+  return ids.empty() ? "none" : ids;
+}
+
+}  // namespace
+
+void PosePriorImportOptions::Check() const {
+  if (nav_path.empty()) throw ErrorAt("no navigation file given");
+  nav_to_camera.Check();
+}
+
+PosePrior DatabasePosePrior(const CameraPrior& prior, uint32_t image_id) {
+  PosePrior database_prior;
+  database_prior.image_id = image_id;
+  database_prior.position = prior.position;
+  database_prior.coordinate_system = PosePriorCoordinateSystem::kCartesian;
+  // A singular covariance (a zero sigma) cannot weight anything; COLMAP
+  // would invert it. Stored as unknown instead.
+  if (IsPositiveDefinite(prior.position_covariance)) {
+    database_prior.position_covariance = prior.position_covariance;
+  }
+  const Eigen::Quaterniond& q = prior.cam_from_world_rotation;
+  database_prior.cam_from_world_rotation_wxyz =
+      Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+  database_prior.gravity_in_cam = q * -Eigen::Vector3d::UnitZ();
+  return database_prior;
+}
+
+LoadedCameraPriors LoadCameraPriors(
+    const PosePriorImportOptions& options,
+    const std::vector<std::pair<std::string, camera_t>>& images,
+    const std::string& images_source) {
+  options.Check();
+  LoadedCameraPriors loaded;
+  NavigationSources sources;
+  sources.nav = options.nav_path.string();
+  loaded.nav = ReadNavigationCsv(options.nav_path);
+  const std::vector<NavRecord>& nav = loaded.nav;
+  std::vector<ImageTime> image_times;
+  if (!options.image_times_path.empty()) {
+    sources.image_times = options.image_times_path.string();
+    image_times = ReadImageTimesCsv(options.image_times_path);
+  }
+  if (!options.rig_config_path.empty()) {
+    loaded.rig = ReadRigConfig(options.rig_config_path);
+  }
+  const RigConfig& rig = loaded.rig;
+  const bool has_rig = !rig.cameras.empty();
+
+  std::unordered_map<std::string, camera_t> camera_of_name;
+  std::vector<std::string> image_names;
+  for (const auto& [name, camera_id] : images) {
+    camera_of_name.emplace(name, camera_id);
+    image_names.push_back(name);
+  }
+  const auto require_image = [&](const std::string& name,
+                                 const std::string& where, const char* hint) {
+    if (camera_of_name.count(name) == 0) {
+      throw ErrorAt(where, ": image '", name, "' is not in ", images_source,
+                    hint);
+    }
+  };
+  const std::vector<ImageTime>* times = nullptr;
+  if (!options.image_times_path.empty()) {
+    for (const ImageTime& time : image_times) {
+      require_image(time.image_name,
+                    sources.image_times + ":" + std::to_string(time.line), "");
+    }
+    times = &image_times;
+  } else {
+    if (nav.front().image_name.empty()) {
+      throw ErrorAt(sources.nav, ":", nav.front().line,
+                    ": the navigation has no image names; give the images' "
+                    "times (--image_times)");
+    }
+    for (const NavRecord& row : nav) {
+      require_image(
+          row.image_name, sources.nav + ":" + std::to_string(row.line),
+          " (without image_times.csv every navigation row must name an "
+          "image; with it the log is a time series)");
+    }
+    if (has_rig) {
+      // The log samples the reference camera; the others fire with the
+      // rig's delays after it.
+      image_times = RigImageTimes(nav, rig, image_names);
+      sources.image_times = sources.nav;
+      times = &image_times;
+    }
+  }
+  if (has_rig && times != nullptr) {
+    for (const ImageTime& time : *times) {
+      const RigCameraConfig* camera = rig.CameraOfImage(time.image_name);
+      const camera_t camera_id = camera_of_name.at(time.image_name);
+      if (camera != nullptr && camera->camera_id != camera_id) {
+        throw ErrorAt(sources.image_times, ":", time.line, ": image '",
+                      time.image_name, "' has camera ", camera_id, " in ",
+                      images_source, ", but its prefix '", camera->image_prefix,
+                      "' is camera ", camera->camera_id, " in ",
+                      options.rig_config_path.string());
+      }
+    }
+  }
+  loaded.priors = CameraPriorsFromNavigation(nav, times, options.nav_to_camera,
+                                             has_rig ? &rig : nullptr, sources);
+  return loaded;
+}
+
+PosePriorImportSummary ImportPosePriors(
+    const std::filesystem::path& database_path,
+    const PosePriorImportOptions& options) {
+  options.Check();
+  Database database = Database::Open(database_path, Database::Mode::kReadWrite);
+  const std::string database_name = database_path.string();
+  std::unordered_map<std::string, DatabaseImage> image_of_name;
+  std::vector<std::pair<std::string, camera_t>> images;
+  for (const DatabaseImage& image : database.ReadAllImages()) {
+    image_of_name.emplace(image.name, image);
+    images.emplace_back(image.name, image.camera_id);
+  }
+  if (!options.rig_config_path.empty()) {
+    const RigConfig rig = ReadRigConfig(options.rig_config_path);
+    const std::vector<DatabaseCamera> cameras = database.ReadAllCameras();
+    for (size_t i = 0; i < rig.cameras.size(); ++i) {
+      const camera_t id = rig.cameras[i].camera_id;
+      const bool found = std::any_of(
+          cameras.begin(), cameras.end(),
+          [id](const DatabaseCamera& c) { return c.camera_id == id; });
+      if (!found) {
+        throw ErrorAt(options.rig_config_path.string(), ": cameras[", i,
+                      "].camera_id = ", id, ": ", database_name,
+                      " has no such camera (its cameras: ", CameraIds(cameras),
+                      ")");
+      }
+    }
+  }
+  const LoadedCameraPriors loaded =
+      LoadCameraPriors(options, images, "the database " + database_name);
+  const std::vector<NavRecord>& nav = loaded.nav;
+  const RigConfig& rig = loaded.rig;
+  const std::vector<CameraPrior>& priors = loaded.priors;
+
+  PosePriorImportSummary summary;
+  summary.schema = database.Schema();
+  summary.num_database_images = image_of_name.size();
+  summary.num_nav_rows = nav.size();
+  summary.num_rig_cameras = rig.cameras.size();
+  std::set<int> dives;
+  for (const NavRecord& row : nav) dives.insert(row.dive);
+  summary.num_dives = dives.size();
+  std::vector<PosePrior> database_priors;
+  for (const CameraPrior& prior : priors) {
+    const PosePrior database_prior =
+        DatabasePosePrior(prior, image_of_name.at(prior.image_name).image_id);
+    summary.num_singular_covariances +=
+        database_prior.HasPositionCovariance() ? 0 : 1;
+    summary.num_exact += prior.sampling == NavSampling::kExact ? 1 : 0;
+    summary.num_interpolated +=
+        prior.sampling == NavSampling::kInterpolated ? 1 : 0;
+    summary.num_extrapolated +=
+        prior.sampling == NavSampling::kExtrapolated ? 1 : 0;
+    database_priors.push_back(database_prior);
+  }
+  summary.num_priors = priors.size();
+  summary.num_images_without_priors =
+      summary.num_database_images - summary.num_priors;
+  summary.written = database.WritePosePriors(database_priors);
+  return summary;
+}
+
+}  // namespace uw

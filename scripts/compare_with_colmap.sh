@@ -1,0 +1,225 @@
+#!/usr/bin/env bash
+# Runs one COLMAP model through stock colmap and through uwcolmap and prints
+# one table of how far each result is from uwsim's truth (issue 4,
+# acceptance 5):
+#
+#   colmap          colmap bundle_adjuster, then colmap model_aligner onto
+#                   the navigation: the vehicle positions of nav.csv as
+#                   they are (what a stock colmap user has), and, with a
+#                   database, the camera centres (vehicle position + lever
+#                   arm) that uwcolmap pose_prior_importer writes into a
+#                   copy of it
+#   ours, no priors uwcolmap bundle_adjuster without navigation, then
+#                   uwcolmap model_aligner --nav (covariance-weighted)
+#   ours, posterior uwcolmap bundle_adjuster --Nav.strategy posterior
+#   ours, prior     uwcolmap bundle_adjuster --Nav.strategy prior, once per
+#                   --Nav.weight in NAV_WEIGHTS (default: auto, the L-curve)
+#
+# Columns: camera RMSE vs truth as the model stands (absolute: every result
+# is in the navigation's frame) and after a least-squares similarity to the
+# truth; scale error s - 1 with s the scale of that similarity
+# (truth_from_model: + when the model is too small); wall time of the steps
+# of that row (bundle adjustment + alignment).
+#
+#   compare_with_colmap.sh SIM_DIR MODEL_DIR OUT_DIR [flags]
+#
+# SIM_DIR     uwsim output: nav.csv and truth/
+# MODEL_DIR   the model to adjust (e.g. colmap mapper's sparse/0)
+# OUT_DIR     new or empty folder: one model per row, logs/, table.txt
+# flags       --BundleAdjustment.NAME VALUE: given to both bundle
+#             adjusters; --database_path DB: the images' database
+#             (default MODEL_DIR/../../database.db when it exists); any
+#             other flag describes the camera on the vehicle and goes to
+#             uwcolmap (--mount, --lever_arm, --boresight, --time_offset,
+#             --image_times)
+#
+# Environment: COLMAP, UWCOLMAP (programs; default colmap on PATH and
+# build/bin/uwcolmap), NAV_WEIGHTS (e.g. "auto 0.5").
+#
+# Example (the survey of scripts/reconstruct_uwsim_survey.sh):
+#   bash scripts/compare_with_colmap.sh build/tests/uwsim_survey/sim \
+#     build/tests/uwsim_survey/sparse/0 /tmp/compare --mount down \
+#     --lever_arm 0.6,0,-0.3 --boresight 0.3,-0.5,0.8
+set -euo pipefail
+if [[ $# -lt 3 ]]; then
+  sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'
+  exit 2
+fi
+sim=$1
+model=$2
+out=$3
+shift 3
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+colmap=${COLMAP:-colmap}
+uwcolmap=${UWCOLMAP:-$root/build/bin/uwcolmap}
+read -r -a nav_weights <<< "${NAV_WEIGHTS:-auto}"
+
+ba_flags=()
+mount_flags=()
+database=""
+while [[ $# -gt 0 ]]; do
+  if [[ $# -lt 2 ]]; then
+    echo "compare_with_colmap: flag $1 has no value" >&2
+    exit 2
+  fi
+  case $1 in
+    --BundleAdjustment.*) ba_flags+=("$1" "$2") ;;
+    --database_path) database=$2 ;;
+    *) mount_flags+=("$1" "$2") ;;
+  esac
+  shift 2
+done
+if [[ -z "$database" && -f "$model/../../database.db" ]]; then
+  database="$model/../../database.db"
+fi
+for path in "$sim/nav.csv" "$sim/truth" "$model"; do
+  if [[ ! -e "$path" ]]; then
+    echo "compare_with_colmap: $path does not exist" >&2
+    exit 1
+  fi
+done
+
+marker=".uwmetric-compare-with-colmap"
+if [[ -e "$out" && -n "$(ls -A "$out" 2>/dev/null)" && ! -f "$out/$marker" ]]; then
+  echo "compare_with_colmap: $out exists and was not made by this script;" \
+    "choose a new or empty folder" >&2
+  exit 1
+fi
+rm -rf "$out"
+mkdir -p "$out/logs"
+touch "$out/$marker"
+
+now() { date +%s.%N; }
+seconds_since() { awk -v a="$1" -v b="$(now)" 'BEGIN { printf "%.2f", b - a }'; }
+run() {  # run NAME COMMAND...: keep the step's log, show it on failure
+  local name=$1
+  shift
+  if ! "$@" > "$out/logs/$name.log" 2>&1; then
+    tail -n 30 "$out/logs/$name.log"
+    echo "compare_with_colmap: step '$name' failed (log: $out/logs/$name.log)" >&2
+    exit 1
+  fi
+}
+
+# colmap's inlier threshold: 3 x the navigation's RMS 3D sigma
+# sqrt(std_x^2 + std_y^2 + std_z^2), so that only gross outliers are set
+# aside, as by uwcolmap model_aligner's automatic threshold (Mahalanobis
+# distance 4.03: 99.9 % of the navigation's own errors).
+nav_table() {  # nav.csv without its comment lines
+  grep -v '^#' "$sim/nav.csv"
+}
+max_error=$(nav_table | awk -F, '
+  NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+  { s += $col["std_x"]^2 + $col["std_y"]^2 + $col["std_z"]^2; ++n }
+  END { printf "%.4g", n ? 3 * sqrt(s / n) : 0 }')
+if ! awk -v e="$max_error" 'BEGIN { exit !(e > 0) }'; then
+  echo "compare_with_colmap: $sim/nav.csv gives no position sigmas" >&2
+  exit 1
+fi
+
+rows=()
+add_row() {  # add_row LABEL MODEL_DIR SECONDS
+  local label=$1 dir=$2 seconds=$3
+  run "compare_$(basename "$dir")_none" "$uwcolmap" model_comparer \
+    --input_path "$dir" --truth_dir "$sim" --alignment none
+  run "compare_$(basename "$dir")_similarity" "$uwcolmap" model_comparer \
+    --input_path "$dir" --truth_dir "$sim" --alignment similarity
+  # "Camera centres: RMSE <m> m = <p> % of the <extent> m extent, ..." and
+  # "Alignment reference_from_model (similarity, ...): scale <s>, ...".
+  local abs="" sim_rmse="" extent="" scale=""
+  read -r abs _ < <(sed -n 's/^Camera centres: RMSE \([^ ]*\) m.*/\1/p' \
+    "$out/logs/compare_$(basename "$dir")_none.log") || true
+  read -r sim_rmse extent < <(sed -n \
+    's/^Camera centres: RMSE \([^ ]*\) m = .* of the \([^ ]*\) m extent.*/\1 \2/p' \
+    "$out/logs/compare_$(basename "$dir")_similarity.log") || true
+  read -r scale < <(sed -n 's/^Alignment reference_from_model.*: scale \([^,]*\),.*/\1/p' \
+    "$out/logs/compare_$(basename "$dir")_similarity.log") || true
+  if [[ -z "$abs" || -z "$sim_rmse" || -z "$scale" ]]; then
+    echo "compare_with_colmap: no camera RMSE or scale in the model_comparer" \
+      "logs of $dir" >&2
+    exit 1
+  fi
+  truth_extent=$extent
+  rows+=("$(awk -v l="$label" -v a="$abs" -v s="$sim_rmse" -v e="$extent" \
+    -v k="$scale" -v t="$seconds" 'BEGIN {
+      printf "%-60s %10.4f %12.6f %10.4f %+11.4f %8.2f", l, a, s,
+        100 * s / e, 100 * (k - 1), t }')")
+}
+
+echo "[compare] model $model, navigation $sim/nav.csv," \
+  "camera on the vehicle: ${mount_flags[*]:-uwcolmap defaults (mount down, no lever arm)}"
+echo "[compare] bundle adjustment flags: ${ba_flags[*]:-the defaults of colmap 3.8}"
+
+# Stock colmap: bundle adjustment, then alignment to the navigation.
+start=$(now)
+mkdir -p "$out/colmap_ba"
+run colmap_bundle_adjuster "$colmap" bundle_adjuster --input_path "$model" \
+  --output_path "$out/colmap_ba" "${ba_flags[@]}"
+colmap_ba_s=$(seconds_since "$start")
+colmap_aligner() {  # colmap_aligner OUT_NAME REFERENCE_FLAGS...
+  local name=$1
+  shift
+  mkdir -p "$out/$name"
+  run "$name" "$colmap" model_aligner --input_path "$out/colmap_ba" \
+    --output_path "$out/$name" "$@" --ref_is_gps 0 --alignment_type custom \
+    --robust_alignment_max_error "$max_error"
+}
+# The vehicle positions of nav.csv by image name (rows without one: none).
+nav_table | awk -F, '
+  NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+  col["image_name"] { print $col["image_name"], $col["x"], $col["y"], $col["z"] }
+' > "$out/vehicle_positions.txt"
+if [[ -s "$out/vehicle_positions.txt" ]]; then
+  start=$(now)
+  colmap_aligner colmap_vehicle --ref_images_path "$out/vehicle_positions.txt"
+  add_row "colmap BA + model_aligner (vehicle positions)" "$out/colmap_vehicle" \
+    "$(awk -v a="$colmap_ba_s" -v b="$(seconds_since "$start")" 'BEGIN { printf "%.2f", a + b }')"
+fi
+if [[ -n "$database" ]]; then
+  cp "$database" "$out/database_priors.db"
+  run pose_prior_importer "$uwcolmap" pose_prior_importer \
+    --database_path "$out/database_priors.db" --nav "$sim/nav.csv" "${mount_flags[@]}"
+  start=$(now)
+  colmap_aligner colmap_camera --database_path "$out/database_priors.db"
+  add_row "colmap BA + model_aligner (camera centres)" "$out/colmap_camera" \
+    "$(awk -v a="$colmap_ba_s" -v b="$(seconds_since "$start")" 'BEGIN { printf "%.2f", a + b }')"
+fi
+
+# Ours without priors, then aligned to the navigation: the same two steps.
+start=$(now)
+run ours_bundle_adjuster "$uwcolmap" bundle_adjuster --input_path "$model" \
+  --output_path "$out/ours_ba" "${ba_flags[@]}"
+ours_ba_s=$(seconds_since "$start")
+run ours_model_aligner "$uwcolmap" model_aligner --input_path "$out/ours_ba" \
+  --output_path "$out/ours_no_priors" --nav "$sim/nav.csv" "${mount_flags[@]}"
+add_row "ours BA (no priors) + model_aligner --nav" "$out/ours_no_priors" \
+  "$(seconds_since "$start")"
+
+start=$(now)
+run ours_posterior "$uwcolmap" bundle_adjuster --input_path "$model" \
+  --output_path "$out/ours_posterior" --nav "$sim/nav.csv" "${mount_flags[@]}" \
+  --Nav.strategy posterior "${ba_flags[@]}"
+add_row "ours --Nav.strategy posterior" "$out/ours_posterior" "$(seconds_since "$start")"
+
+for weight in "${nav_weights[@]}"; do
+  start=$(now)
+  run "ours_prior_$weight" "$uwcolmap" bundle_adjuster --input_path "$model" \
+    --output_path "$out/ours_prior_$weight" --nav "$sim/nav.csv" \
+    "${mount_flags[@]}" --Nav.strategy prior --Nav.weight "$weight" "${ba_flags[@]}"
+  seconds=$(seconds_since "$start")
+  chosen=$(sed -n 's/^L-curve: lambda = \([^ ]*\) px\/m.*/ = \1 px\/m/p' \
+    "$out/logs/ours_prior_$weight.log")
+  add_row "ours --Nav.strategy prior --Nav.weight $weight$chosen" \
+    "$out/ours_prior_$weight" "$seconds"
+done
+
+{
+  echo "Truth: $sim/truth, camera extent $truth_extent m." \
+    "colmap model_aligner inlier threshold $max_error m."
+  echo "Bundle adjustment alone: colmap $colmap_ba_s s, ours (no priors)" \
+    "$ours_ba_s s, ratio $(awk -v a="$ours_ba_s" -v b="$colmap_ba_s" \
+      'BEGIN { printf "%.2f", a / b }') (one run; bench/results/ba_speed.json has medians)."
+  printf "%-60s %10s %12s %10s %11s %8s\n" "method" "abs_rmse_m" \
+    "sim_rmse_m" "sim_%ext" "scale_err_%" "time_s"
+  printf '%s\n' "${rows[@]}"
+} | tee "$out/table.txt"

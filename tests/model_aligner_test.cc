@@ -1,0 +1,252 @@
+// uwcolmap model_aligner against stock `colmap model_aligner` (3.8) on the
+// model stock colmap reconstructed from the rendered test scene (fixture
+// colmap_scene), with the scene's true camera centres as references.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <regex>
+
+#include <nlohmann/json.hpp>
+
+#include "colmap_plugins/scene/model_io.h"
+#include "colmap_plugins/util/file.h"
+#include "tests/support/process.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::FreshTestDir;
+using testing::Quoted;
+using testing::RunProcess;
+
+const fs::path kSceneDir = UW_SCENE_DIR;
+const fs::path kSparseDir = kSceneDir / "sparse" / "0";
+const fs::path kRefImages = kSceneDir / "scene" / "truth" / "ref_images.txt";
+const fs::path kUwcolmap = fs::path(UW_BIN_DIR) / "uwcolmap";
+
+testing::ProcessResult Uwcolmap(const std::string& flags) {
+  return RunProcess(kUwcolmap.string() + " model_aligner " + flags, true);
+}
+
+std::string InOut(const fs::path& input, const fs::path& output) {
+  return "--input_path " + Quoted(input) + " --output_path " + Quoted(output);
+}
+
+std::map<std::string, const Image*> ByName(const Reconstruction& model) {
+  std::map<std::string, const Image*> images;
+  for (const Image& image : model.Images()) images[image.name] = &image;
+  return images;
+}
+
+TEST(ModelAligner, AgreesWithStockColmap) {
+  const fs::path dir = FreshTestDir("uw_model_aligner_test");
+  // colmap 3.8 aborts when the output folder does not exist.
+  fs::create_directories(dir / "colmap");
+  const auto colmap = RunProcess(
+      "colmap model_aligner " + InOut(kSparseDir, dir / "colmap") +
+          " --ref_images_path " + Quoted(kRefImages) +
+          " --ref_is_gps 0 --alignment_type custom --robust_alignment 0",
+      true);
+  ASSERT_EQ(colmap.exit_code, 0) << colmap.output;
+  const auto ours = Uwcolmap(InOut(kSparseDir, dir / "ours") +
+                             " --ref_images_path " + Quoted(kRefImages) +
+                             " --ref_is_gps 0 --alignment_type custom "
+                             "--robust_alignment 0 --transform_path " +
+                             Quoted(dir / "sim3.json"));
+  ASSERT_EQ(ours.exit_code, 0) << ours.output;
+
+  const Reconstruction theirs_model = ReadModel(dir / "colmap");
+  const Reconstruction our_model = ReadModel(dir / "ours");
+  ASSERT_EQ(our_model.Images().size(), theirs_model.Images().size());
+  const auto theirs = ByName(theirs_model);
+  double max_centre = 0.0;
+  double max_rotation = 0.0;
+  for (const Image& image : our_model.Images()) {
+    const Image& other = *theirs.at(image.name);
+    max_centre =
+        std::max(max_centre,
+                 (image.ProjectionCenter() - other.ProjectionCenter()).norm());
+    max_rotation =
+        std::max(max_rotation, image.cam_from_world.rotation.angularDistance(
+                                   other.cam_from_world.rotation.normalized()));
+  }
+  double max_point = 0.0;
+  for (const Point3D& point : our_model.Points3D()) {
+    max_point = std::max(
+        max_point,
+        (point.xyz - theirs_model.FindPoint3D(point.point3D_id)->xyz).norm());
+  }
+  // colmap prints the mean and median distance of the aligned centres to
+  // their references.
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(
+      colmap.output, match,
+      std::regex(
+          R"(Alignment error: ([0-9.e+-]+) \(mean\), ([0-9.e+-]+) \(median\))")))
+      << colmap.output;
+  const nlohmann::json sim3 =
+      nlohmann::json::parse(ReadFileToString(dir / "sim3.json"));
+  std::vector<double> errors;
+  for (const auto& image : sim3.at("images")) {
+    errors.push_back(image.at("residual_norm_m").get<double>());
+  }
+  double mean = 0.0;
+  for (const double error : errors) mean += error / errors.size();
+  std::sort(errors.begin(), errors.end());
+  std::printf(
+      "[ figures ] model_aligner vs colmap model_aligner on %zu images: max "
+      "|centre difference| %.3g m, max rotation difference %.3g rad, max "
+      "|point difference| %.3g m; residual mean %.6f m (colmap %s), "
+      "RMS %.6f m\n",
+      errors.size(), max_centre, max_rotation, max_point, mean,
+      match[1].str().c_str(), sim3.at("rms_m").get<double>());
+  EXPECT_LT(max_centre, 1e-6);
+  EXPECT_LT(max_rotation, 1e-8);
+  EXPECT_LT(max_point, 1e-6);
+  EXPECT_NEAR(mean, std::stod(match[1].str()), 1e-6);
+  EXPECT_EQ(sim3.at("num_images").get<int>(), 12);
+
+  // Stock colmap reads our output.
+  const auto analyzer =
+      RunProcess("colmap model_analyzer --path " + Quoted(dir / "ours"), true);
+  EXPECT_EQ(analyzer.exit_code, 0) << analyzer.output;
+  EXPECT_NE(analyzer.output.find("Registered images: 12"), std::string::npos)
+      << analyzer.output;
+}
+
+TEST(ModelAligner, WritesTextForTextAndKeepsRelativeGeometry) {
+  const fs::path dir = FreshTestDir("uw_model_aligner_test");
+  ASSERT_EQ(
+      RunProcess(kUwcolmap.string() + " model_converter " +
+                     InOut(kSparseDir, dir / "txt") + " --output_type TXT",
+                 true)
+          .exit_code,
+      0);
+  const auto result = Uwcolmap(InOut(dir / "txt", dir / "aligned") +
+                               " --ref_images_path " + Quoted(kRefImages));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(fs::exists(dir / "aligned" / "images.txt"));
+  EXPECT_FALSE(fs::exists(dir / "aligned" / "images.bin"));
+  // The stored reprojection errors still hold: poses and points moved
+  // together.
+  const auto analyzer = RunProcess(
+      kUwcolmap.string() + " model_analyzer --path " + Quoted(dir / "aligned"),
+      true);
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(
+      analyzer.output, match,
+      std::regex(R"(max \|recomputed - stored\| per point ([0-9.e+-]+)px)")))
+      << analyzer.output;
+  EXPECT_LT(std::stod(match[1].str()), 1e-6) << analyzer.output;
+}
+
+// One reference 1 m off: the robust alignment lists it and keeps the
+// transform of the clean references.
+TEST(ModelAligner, RobustAlignmentSetsAWrongReferenceAside) {
+  const fs::path dir = FreshTestDir("uw_model_aligner_test");
+  std::ifstream in(kRefImages);
+  std::ofstream out(dir / "ref.txt");
+  std::string name;
+  double x, y, z;
+  while (in >> name >> x >> y >> z) {
+    out << name << " " << x << " " << y << " "
+        << (name == "005.png" ? z + 1.0 : z) << "\n";
+  }
+  out.close();
+  const auto clean = Uwcolmap(
+      InOut(kSparseDir, dir / "clean") + " --ref_images_path " +
+      Quoted(kRefImages) + " --transform_path " + Quoted(dir / "clean.json"));
+  ASSERT_EQ(clean.exit_code, 0) << clean.output;
+  const auto result =
+      Uwcolmap(InOut(kSparseDir, dir / "aligned") + " --ref_images_path " +
+               Quoted(dir / "ref.txt") + " --transform_path " +
+               Quoted(dir / "sim3.json"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("Outlier: 005.png"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("Inliers: 11 of 12"), std::string::npos)
+      << result.output;
+  const auto matrix = [&](const std::string& file) {
+    return nlohmann::json::parse(ReadFileToString(dir / file))
+        .at("reference_from_model")
+        .at("matrix");
+  };
+  double max_difference = 0.0;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      max_difference = std::max(
+          max_difference, std::abs(matrix("sim3.json")[r][c].get<double>() -
+                                   matrix("clean.json")[r][c].get<double>()));
+    }
+  }
+  EXPECT_LT(max_difference, 2e-3);
+}
+
+void ExpectFailsWritingNothing(const std::string& flags, const fs::path& output,
+                               const std::string& message) {
+  const auto result = Uwcolmap(flags);
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find(message), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(output)) << output;
+}
+
+TEST(ModelAligner, BadReferencesGiveClearErrorsAndWriteNothing) {
+  const fs::path dir = FreshTestDir("uw_model_aligner_test");
+  const fs::path output = dir / "aligned";
+  const std::string json = " --transform_path " + Quoted(dir / "sim3.json");
+  {
+    std::ofstream out(dir / "prefixed.txt");
+    std::ifstream in(kRefImages);
+    std::string name;
+    double x, y, z;
+    while (in >> name >> x >> y >> z) {
+      out << "images/" << name << " " << x << " " << y << " " << z << "\n";
+    }
+  }
+  ExpectFailsWritingNothing(
+      InOut(kSparseDir, output) + " --ref_images_path " +
+          Quoted(dir / "prefixed.txt") + json,
+      output,
+      "0 of its 12 positions name an image of the model (12 images); at "
+      "least 3 are needed (e.g. reference 'images/000.png', model "
+      "'000.png')");
+  {
+    std::ofstream out(dir / "line.txt");
+    for (int k = 0; k < 12; ++k) {
+      char name[16];
+      std::snprintf(name, sizeof(name), "%03d.png", k);
+      out << name << " " << k << " " << 2 * k << " 1\n";
+    }
+  }
+  ExpectFailsWritingNothing(InOut(kSparseDir, output) + " --ref_images_path " +
+                                Quoted(dir / "line.txt") + json,
+                            output, "the 12 target points are collinear");
+  ExpectFailsWritingNothing(InOut(kSparseDir, output) + " --ref_images_path " +
+                                Quoted(kRefImages) + " --nav nav.csv" + json,
+                            output,
+                            "give exactly one of --ref_images_path, "
+                            "--database_path and --nav (got 2)");
+  ExpectFailsWritingNothing(InOut(kSparseDir, output) + " --ref_images_path " +
+                                Quoted(kRefImages) + " --ref_is_gps 1" + json,
+                            output, "--ref_is_gps 1");
+  {
+    std::ofstream out(dir / "broken.txt");
+    out << "000.png 1 2 3\n001.png 1 2\n";
+  }
+  ExpectFailsWritingNothing(InOut(kSparseDir, output) + " --ref_images_path " +
+                                Quoted(dir / "broken.txt") + json,
+                            output,
+                            "broken.txt:2: expected 'image_name x y z'");
+  EXPECT_FALSE(fs::exists(dir / "sim3.json"));
+  const auto same = Uwcolmap(InOut(kSparseDir, kSparseDir) +
+                             " --ref_images_path " + Quoted(kRefImages));
+  EXPECT_EQ(same.exit_code, 1);
+  EXPECT_NE(same.output.find("is the input folder"), std::string::npos)
+      << same.output;
+}
+
+}  // namespace
+}  // namespace uw
