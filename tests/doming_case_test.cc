@@ -82,17 +82,16 @@ TEST(DomingCase, StockColmapBendsTheStripWithAWrongK1) {
   }
   const Eigen::Vector3d fit = design.colPivHouseholderQr().solve(deviation);
   const double sagitta = fit(2) * length * length / 4.0;
-  const double rmse = std::sqrt(
-      (centres.model - centres.truth).colwise().squaredNorm().mean());
+  const double rmse =
+      std::sqrt((centres.model - centres.truth).colwise().squaredNorm().mean());
   const double residual_rms =
       std::sqrt((design * fit - deviation).squaredNorm() / n);
   std::printf(
       "[ figures ] doming case (%s): %zu/%zu images, %.1f m strip; camera "
       "RMSE after similarity %.3f m; camera track sagitta %.3f m (%.2f %% of "
       "the length), %.3f m RMS about the parabola\n",
-      kCaseDir.filename().c_str(), model.Images().size(),
-      truth.Images().size(), length, rmse, sagitta, 100 * sagitta / length,
-      residual_rms);
+      kCaseDir.filename().c_str(), model.Images().size(), truth.Images().size(),
+      length, rmse, sagitta, 100 * sagitta / length, residual_rms);
   // With the true k1 the same pipeline gives ~3 mm RMSE and < 5 mm of
   // sagitta (docs/uwsim.md); the dome must stand far above that.
   EXPECT_GT(std::abs(sagitta), 0.004 * length);
