@@ -1,39 +1,22 @@
 #include "colmap_plugins/nav/csv_table.h"
 
-#include <fstream>
-
 #include <gtest/gtest.h>
 
+#include "colmap_plugins/nav/text_file_reader_test.h"
 #include "colmap_plugins/util/error.h"
-#include "tests/support/process.h"
 
 namespace uw {
 namespace {
 
 namespace fs = std::filesystem;
 
-class CsvTableTest : public ::testing::Test {
+class CsvTableTest : public TextFileReaderTest<CsvTable> {
  protected:
-  void SetUp() override {
-    path_ = testing::FreshTestDir("uw_csv_table_test") / "table.csv";
-  }
-
-  CsvTable Read(const std::string& text) {
-    std::ofstream(path_, std::ios::binary) << text;
-    return CsvTable::Read(path_, {"name", "a", "b"}, {"name", "a"});
-  }
-
-  // The message of the error reading `text` raises.
-  std::string Error(const std::string& text) {
-    try {
-      Read(text);
-    } catch (const uw::Error& error) {
-      return error.what();
-    }
-    return "no error";
-  }
-
-  fs::path path_;
+  CsvTableTest()
+      : TextFileReaderTest(
+            "uw_csv_table_test", "table.csv", [](const fs::path& path) {
+              return CsvTable::Read(path, {"name", "a", "b"}, {"name", "a"});
+            }) {}
 };
 
 TEST_F(CsvTableTest, CommentsBlankLinesCrlfSpacesAndAnyColumnOrder) {

@@ -1,38 +1,20 @@
 #include "colmap_plugins/nav/image_times.h"
 
-#include <fstream>
-
 #include <gtest/gtest.h>
 
+#include "colmap_plugins/nav/text_file_reader_test.h"
 #include "colmap_plugins/util/error.h"
-#include "tests/support/process.h"
 
 namespace uw {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ImageTimesTest : public ::testing::Test {
+class ImageTimesTest : public TextFileReaderTest<std::vector<ImageTime>> {
  protected:
-  void SetUp() override {
-    path_ = testing::FreshTestDir("uw_image_times_test") / "image_times.csv";
-  }
-
-  std::vector<ImageTime> Read(const std::string& text) {
-    std::ofstream(path_, std::ios::binary) << text;
-    return ReadImageTimesCsv(path_);
-  }
-
-  std::string Error(const std::string& text) {
-    try {
-      Read(text);
-    } catch (const uw::Error& error) {
-      return error.what();
-    }
-    return "no error";
-  }
-
-  fs::path path_;
+  ImageTimesTest()
+      : TextFileReaderTest("uw_image_times_test", "image_times.csv",
+                           ReadImageTimesCsv) {}
 };
 
 TEST_F(ImageTimesTest, ReadsUwsimsFileAndAnOptionalDive) {

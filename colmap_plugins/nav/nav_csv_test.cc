@@ -1,12 +1,11 @@
 #include "colmap_plugins/nav/nav_csv.h"
 
 #include <cmath>
-#include <fstream>
 
 #include <gtest/gtest.h>
 
+#include "colmap_plugins/nav/text_file_reader_test.h"
 #include "colmap_plugins/util/error.h"
-#include "tests/support/process.h"
 
 namespace uw {
 namespace {
@@ -18,27 +17,10 @@ const std::string kHeader =
     "image_name,time,dive,x,y,z,roll,pitch,yaw,std_x,std_y,std_z,std_roll,"
     "std_pitch,std_yaw\n";
 
-class NavCsvTest : public ::testing::Test {
+class NavCsvTest : public TextFileReaderTest<std::vector<NavRecord>> {
  protected:
-  void SetUp() override {
-    path_ = testing::FreshTestDir("uw_nav_csv_test") / "nav.csv";
-  }
-
-  std::vector<NavRecord> Read(const std::string& text) {
-    std::ofstream(path_, std::ios::binary) << text;
-    return ReadNavigationCsv(path_);
-  }
-
-  std::string Error(const std::string& text) {
-    try {
-      Read(text);
-    } catch (const uw::Error& error) {
-      return error.what();
-    }
-    return "no error";
-  }
-
-  fs::path path_;
+  NavCsvTest()
+      : TextFileReaderTest("uw_nav_csv_test", "nav.csv", ReadNavigationCsv) {}
 };
 
 // A row of uwsim's nav.csv: angles in degrees become radians.
