@@ -13,7 +13,8 @@
 #                   uwcolmap model_aligner --nav (covariance-weighted)
 #   ours, posterior uwcolmap bundle_adjuster --Nav.strategy posterior
 #   ours, prior     uwcolmap bundle_adjuster --Nav.strategy prior, once per
-#                   --Nav.weight in NAV_WEIGHTS (default: auto, the L-curve)
+#                   --Nav.weight in NAV_WEIGHTS (default: auto, lambda
+#                   from the estimated noise levels)
 #
 # Columns: camera RMSE vs truth as the model stands (absolute: every result
 # is in the navigation's frame) and after a least-squares similarity to the
@@ -207,8 +208,9 @@ for weight in "${nav_weights[@]}"; do
     --output_path "$out/ours_prior_$weight" --nav "$sim/nav.csv" \
     "${mount_flags[@]}" --Nav.strategy prior --Nav.weight "$weight" "${ba_flags[@]}"
   seconds=$(seconds_since "$start")
-  chosen=$(sed -n 's/^L-curve: lambda = \([^ ]*\) px\/m.*/ = \1 px\/m/p' \
-    "$out/logs/ours_prior_$weight.log")
+  # The weight used: the noise-level estimate, or the L-curve's choice.
+  chosen=$(sed -n 's/.*lambda = \([^ ]*\) px\/m.*/ = \1 px\/m/p' \
+    "$out/logs/ours_prior_$weight.log" | tail -n 1)
   add_row "ours --Nav.strategy prior --Nav.weight $weight$chosen" \
     "$out/ours_prior_$weight" "$seconds"
 done

@@ -69,7 +69,7 @@ echo " errors, ~1 m per image on this 6 m survey: see docs/uwcolmap.md#bundle_ad
 rm -rf "$out/compare"
 bash "$root/scripts/compare_with_colmap.sh" "$out/sim" "$out/sparse/0" \
   "$out/compare" --mount down --lever_arm 0.6,0,-0.3 --boresight 0.3,-0.5,0.8
-echo "navigation-fused model (L-curve weight): $out/compare (ba_report.json, lcurve.png)"
+echo "navigation-fused model (lambda from the noise levels): $out/compare/ours_prior_auto (ba_report.json)"
 
 echo
 echo "Demo finished in $((SECONDS - start)) s; outputs in $out"

@@ -6,6 +6,7 @@
 // similarity). Timing is left to bench/ba_speed_bench.cc.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -162,11 +163,11 @@ TEST(CompareWithColmap, ScriptPrintsOneTable) {
          << value[2].get<double>();
     return text.str();
   };
-  // A fixed lambda: the L-curve's 21 adjustments would take minutes.
+  // The default weight (auto): lambda from the estimated noise levels.
   const auto result = RunProcess(
-      "UWCOLMAP=" + Quoted(kUwcolmap) + " NAV_WEIGHTS=0.3 bash " +
-          Quoted(kScript) + " " + Quoted(kSimDir) + " " + Quoted(kSparseDir) +
-          " " + Quoted(dir / "out") + " --mount down --lever_arm " +
+      "UWCOLMAP=" + Quoted(kUwcolmap) + " bash " + Quoted(kScript) + " " +
+          Quoted(kSimDir) + " " + Quoted(kSparseDir) + " " +
+          Quoted(dir / "out") + " --mount down --lever_arm " +
           triple("lever_arm_m") + " --boresight " + triple("boresight_deg"),
       true);
   ASSERT_EQ(result.exit_code, 0) << result.output;
@@ -179,6 +180,11 @@ TEST(CompareWithColmap, ScriptPrintsOneTable) {
   const Row& ours = rows.at("ours BA (no priors) + model_aligner --nav");
   const Row& posterior = rows.at("ours --Nav.strategy posterior");
   ASSERT_EQ(rows.count("colmap BA + model_aligner (vehicle positions)"), 1u);
+  const auto prior = std::find_if(rows.begin(), rows.end(), [](const auto& r) {
+    return r.first.rfind("ours --Nav.strategy prior --Nav.weight auto = ", 0) ==
+           0;
+  });
+  EXPECT_NE(prior, rows.end()) << "no row with the chosen lambda";
   // Without priors the shape is colmap's; only the alignment to the
   // navigation differs (ours weights by the navigation's covariances).
   EXPECT_NEAR(ours.sim_rmse_m, colmap.sim_rmse_m, 1e-4);

@@ -237,6 +237,10 @@ std::string LCurveJson(const LCurve& curve) {
        curve.balance_weight_px_per_m
            ? nlohmann::json(*curve.balance_weight_px_per_m)
            : nlohmann::json()},
+      {"noise_weight_px_per_m",
+       curve.noise_weight_px_per_m
+           ? nlohmann::json(*curve.noise_weight_px_per_m)
+           : nlohmann::json()},
       {"points", points}};
   return json.dump(2) + "\n";
 }
@@ -288,6 +292,7 @@ void WriteLCurvePlot(const LCurve& curve, const std::filesystem::path& path) {
   const cv::Scalar black(0, 0, 0);
   const cv::Scalar blue(180, 90, 20);
   const cv::Scalar red(30, 30, 220);
+  const cv::Scalar green(40, 150, 40);
   const auto text = [&](const std::string& label, cv::Point at) {
     cv::putText(image, label, at, cv::FONT_HERSHEY_SIMPLEX, 0.45, black, 1,
                 cv::LINE_AA);
@@ -307,14 +312,17 @@ void WriteLCurvePlot(const LCurve& curve, const std::filesystem::path& path) {
   }
   std::ostringstream title;
   title.precision(4);
-  title << "L-curve: corner lambda = ";
+  title << "L-curve, lambda [px/m]: corner ";
   if (curve.corner_weight_px_per_m) {
-    title << *curve.corner_weight_px_per_m << " px/m";
+    title << *curve.corner_weight_px_per_m;
   } else {
     title << "none";
   }
   if (curve.balance_weight_px_per_m) {
-    title << ", balance lambda = " << *curve.balance_weight_px_per_m << " px/m";
+    title << ", balance " << *curve.balance_weight_px_per_m;
+  }
+  if (curve.noise_weight_px_per_m) {
+    title << ", noise levels " << *curve.noise_weight_px_per_m;
   }
   text(title.str(), {kMargin, 40});
   std::ostringstream x_label;
@@ -337,6 +345,11 @@ void WriteLCurvePlot(const LCurve& curve, const std::filesystem::path& path) {
     if (curve.corner_weight_px_per_m) {
       const double at = std::log10(*curve.corner_weight_px_per_m);
       cv::line(image, to_curvature(at, k_lo), to_curvature(at, k_hi), red, 1,
+               cv::LINE_AA);
+    }
+    if (curve.noise_weight_px_per_m) {
+      const double at = std::log10(*curve.noise_weight_px_per_m);
+      cv::line(image, to_curvature(at, k_lo), to_curvature(at, k_hi), green, 1,
                cv::LINE_AA);
     }
     std::ostringstream label;

@@ -54,6 +54,9 @@ struct LCurve {
   // deform the model (no descending branch). Interpolated in log lambda;
   // absent if the sweep does not cross it.
   std::optional<double> balance_weight_px_per_m;
+  // lambda from the estimated noise levels (noise_levels.h), when the
+  // caller has it: marked on the plot and written to the JSON.
+  std::optional<double> noise_weight_px_per_m;
 };
 
 // count values from min to max, equally spaced in log.

@@ -15,6 +15,9 @@
 // (lambda^2 / N) sum |c_i - p_i|^2, lambda = sigma_v / sigma_n in px/m. The
 // rig and attitude terms, stated in their own sigmas, enter the same way:
 // in units of sigma, scaled to pixels by sigma_v = lambda sigma_n.
+// That is NavWeighting::kThesis. The default, kLikelihood, drops the
+// division by the numbers of terms (M, N, N_rig): the Gaussian likelihood
+// when lambda is the true noise ratio (noise_levels.h estimates it).
 //
 // Gauge: with >= 3 non-collinear position priors the priors fix it; the
 // reference dive's offset is zero. Without priors, 7 DOF are fixed as in
@@ -37,6 +40,19 @@
 namespace uw {
 
 enum class LossType { kTrivial, kHuber, kCauchy };
+
+// How the objectives are weighted against each other (docs/uwcolmap.md,
+// "Weighting"). Both take lambda = sigma_v / sigma_n:
+//   kLikelihood: E = sum |r_v|^2 + lambda^2 sigma_n^2 sum |S_i e_i|^2 + ...,
+//     the Gaussian likelihood when lambda is the true noise ratio;
+//   kThesis: Eq. 2, each objective divided by its number of terms (M
+//     reprojections, N priors), which weighs every prior M/N times more
+//     than the likelihood does. Stiffer against systematic errors of the
+//     images (doming from a wrong distortion), but it also writes the
+//     navigation's noise into the model.
+enum class NavWeighting { kLikelihood, kThesis };
+std::string NavWeightingName(NavWeighting weighting);
+NavWeighting NavWeightingFromName(const std::string& name);
 std::string LossTypeName(LossType type);
 LossType LossTypeFromName(const std::string& name);  // "none"/"trivial",
                                                      // "huber", "cauchy"
@@ -86,6 +102,7 @@ struct NavBundleAdjustmentOptions {
   // Navigation. Without priors, the adjustment is plain BA.
   // lambda = sigma_v / sigma_n (px/m), Eq. 2.
   double weight_px_per_m = 1.0;
+  NavWeighting weighting = NavWeighting::kLikelihood;
   bool use_attitude = false;
   LossType nav_loss = LossType::kTrivial;
   // In units of sigma: sqrt of chi^2(3 DOF, 95 %).
@@ -137,6 +154,7 @@ struct CostTerm {
 
 struct NavBundleAdjustmentReport {
   double weight_px_per_m = 0.0;
+  NavWeighting weighting = NavWeighting::kLikelihood;
   double nav_sigma_m = 0.0;  // sigma_n: RMS prior standard deviation
   int num_images = 0;
   int num_points = 0;
@@ -153,6 +171,11 @@ struct NavBundleAdjustmentReport {
   double covariance_time_s = 0.0;
   std::string covariance_note;
 };
+
+// Indices of a camera model's parameters that `options` keep constant
+// (COLMAP's BundleAdjustment.refine_* flags).
+std::vector<int> ConstantCameraParams(const NavBundleAdjustmentOptions& options,
+                                      CameraModelId model_id);
 
 // The RMS prior standard deviation sigma_n = sqrt(mean(trace(cov) / 3)), m
 // (0 without priors).

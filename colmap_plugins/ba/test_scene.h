@@ -27,6 +27,9 @@ struct TestSceneOptions {
   int num_points = 1500;
   double pixel_sigma = 0.5;
   double nav_sigma_m = 0.3;
+  // Attitude priors (world-frame rotation noise, rad); drawn from their own
+  // random stream, so the other draws do not depend on them.
+  double attitude_sigma_rad = 0.002;
   // Lines with index >= first_line_of_dive_2 belong to dive 2 (none if
   // >= num_lines), whose navigation is off by dive2_bias.
   int first_line_of_dive_2 = 1000;
@@ -39,6 +42,12 @@ struct TestScene {
   Reconstruction observed;  // truth poses/points, noisy observations
   std::vector<ImagePosePrior> priors;
 };
+
+// Exp of a rotation vector (rad); the identity for a zero vector.
+inline Eigen::Quaterniond RotationFromVector(const Eigen::Vector3d& w) {
+  if (w.norm() == 0.0) return Eigen::Quaterniond::Identity();
+  return Eigen::Quaterniond(Eigen::AngleAxisd(w.norm(), w.normalized()));
+}
 
 inline Rigid3d LookDownFrom(const Eigen::Vector3d& center, double yaw) {
   // Camera z down (world -z), x along the yaw direction.
@@ -125,6 +134,8 @@ inline TestScene MakeTestScene(const TestSceneOptions& options) {
   }
 
   scene.observed = scene.truth;
+  std::mt19937 attitude_rng(options.seed + 1000);
+  std::normal_distribution<double> attitude_normal;
   for (Image& image : scene.observed.Images()) {
     for (Point2D& point2D : image.points2D) {
       point2D.xy +=
@@ -144,9 +155,29 @@ inline TestScene MakeTestScene(const TestSceneOptions& options) {
         (prior.dive == 2 ? options.dive2_bias : Eigen::Vector3d::Zero());
     prior.position_covariance =
         options.nav_sigma_m * options.nav_sigma_m * Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d w = options.attitude_sigma_rad *
+                              Eigen::Vector3d(attitude_normal(attitude_rng),
+                                              attitude_normal(attitude_rng),
+                                              attitude_normal(attitude_rng));
+    // world_from_cam_prior = Exp(w) world_from_cam: noise in the world frame.
+    prior.cam_from_world_rotation =
+        image.cam_from_world.rotation * RotationFromVector(w).conjugate();
+    prior.rotation_covariance = options.attitude_sigma_rad *
+                                options.attitude_sigma_rad *
+                                Eigen::Matrix3d::Identity();
     scene.priors.push_back(prior);
   }
   return scene;
+}
+
+// Adjustment options for the test scenes: intrinsics fixed at the truth,
+// one thread (deterministic).
+inline NavBundleAdjustmentOptions FixedIntrinsics() {
+  NavBundleAdjustmentOptions options;
+  options.refine_focal_length = false;
+  options.refine_extra_params = false;
+  options.num_threads = 1;
+  return options;
 }
 
 // Moves every pose and point of `model` by small random amounts (an
@@ -163,8 +194,7 @@ inline void Perturb(double position_sigma_m, double angle_sigma_rad,
         image.ProjectionCenter() + position_sigma_m * random3();
     const Eigen::Vector3d w = angle_sigma_rad * random3();
     image.cam_from_world.rotation =
-        image.cam_from_world.rotation *
-        Eigen::Quaterniond(Eigen::AngleAxisd(w.norm(), w.normalized()));
+        image.cam_from_world.rotation * RotationFromVector(w);
     image.cam_from_world.translation =
         -(image.cam_from_world.rotation * center);
   }

@@ -14,6 +14,7 @@
 #include "colmap_plugins/ba/lcurve.h"
 #include "colmap_plugins/ba/nav_bundle_adjuster.h"
 #include "colmap_plugins/ba/nav_inputs.h"
+#include "colmap_plugins/ba/noise_levels.h"
 #include "colmap_plugins/ba/prior_alignment.h"
 #include "colmap_plugins/exe/command.h"
 #include "colmap_plugins/exe/nav_flags.h"
@@ -91,6 +92,7 @@ struct NavBaFlags {
   NavFlags nav;
   ColmapBundleAdjustmentFlags colmap;
   std::string use_attitude = "0";
+  std::string weighting = "likelihood";
   std::string nav_loss = "none";
   double nav_loss_scale = 2.7955;
   double position_sigma = 0.0;
@@ -115,6 +117,12 @@ struct NavBaFlags {
                    "Also constrain camera attitudes by the navigation's "
                    "roll, pitch and heading (needs --nav)")
         ->default_val("0");
+    app.add_option("--Nav.weighting", weighting,
+                   "likelihood: the Gaussian likelihood (lambda is the "
+                   "ratio of the two noise levels); thesis: Eq. 2, each "
+                   "objective divided by its number of terms (priors M/N "
+                   "times stiffer; docs/uwcolmap.md)")
+        ->default_val("likelihood");
     app.add_option("--Nav.loss", nav_loss,
                    "Robust loss on the position priors: none, huber, cauchy")
         ->default_val("none");
@@ -155,6 +163,7 @@ struct NavBaFlags {
     NavBundleAdjustmentOptions options;
     colmap.Apply(&options);
     options.use_attitude = ParseColmapBool(use_attitude, "Nav.use_attitude");
+    options.weighting = NavWeightingFromName(weighting);
     options.nav_loss = LossTypeFromName(nav_loss);
     options.nav_loss_scale = nav_loss_scale;
     options.dive_offsets = ParseColmapBool(dive_offsets, "Dive.offsets");
@@ -221,16 +230,56 @@ void CheckOutputPath(const std::string& input_path,
   }
 }
 
-// Reprojection RMS per coordinate of the model as stored (point errors).
-double StoredPixelSigma(const Reconstruction& model) {
-  double sum = 0.0;
-  size_t count = 0;
-  for (const Point3D& point : model.Points3D()) {
-    if (!point.HasError()) continue;
-    sum += point.error * point.error;
-    ++count;
-  }
-  return count == 0 ? 1.0 : std::sqrt(sum / count / 2.0);
+// Estimates and prints the noise levels behind --Nav.weight auto.
+NoiseLevels PrintNoiseLevels(const NavBundleAdjustmentOptions& options,
+                             const std::vector<ImagePosePrior>& priors,
+                             const Reconstruction& model) {
+  std::cout << "Noise levels: images-only adjustment, then its similarity "
+               "to the navigation"
+            << std::endl;
+  const NoiseLevels levels = EstimateNoiseLevels(options, priors, model);
+  std::cout << "  sigma_v = " << levels.pixel_sigma << " px ("
+            << levels.reprojection_dof
+            << " dof), sigma_n = " << levels.nav_sigma_m << " m ("
+            << levels.navigation_dof << " dof; stated "
+            << levels.stated_nav_sigma_m << " m, x" << levels.nav_scale
+            << "): lambda = " << levels.weight_px_per_m << " px/m\n";
+  return levels;
+}
+
+nlohmann::json NoiseLevelsJson(const NoiseLevels& levels) {
+  return {{"pixel_sigma_px", levels.pixel_sigma},
+          {"reprojection_dof", levels.reprojection_dof},
+          {"nav_sigma_m", levels.nav_sigma_m},
+          {"stated_nav_sigma_m", levels.stated_nav_sigma_m},
+          {"nav_scale", levels.nav_scale},
+          {"navigation_dof", levels.navigation_dof},
+          {"weight_px_per_m", levels.weight_px_per_m}};
+}
+
+// The L-curve over lambda / 30 .. lambda * 30 around the noise-level
+// estimate (or the given bounds), with progress.
+LCurve SweepAroundEstimate(const NavBundleAdjustmentOptions& options,
+                           const NavInputs& inputs, const Reconstruction& model,
+                           const NoiseLevels& levels, int steps,
+                           double lambda_min = 0.0, double lambda_max = 0.0) {
+  const double low =
+      lambda_min > 0.0 ? lambda_min : levels.weight_px_per_m / 30.0;
+  const double high =
+      lambda_max > 0.0 ? lambda_max : levels.weight_px_per_m * 30.0;
+  std::cout << "L-curve: " << steps << " adjustments, lambda from " << low
+            << " to " << high << " px/m\n";
+  LCurve curve = SweepLCurve(
+      options, inputs.priors, inputs.rig ? &*inputs.rig : nullptr,
+      inputs.image_times, model, LogSpacedWeights(low, high, steps),
+      [](size_t i, size_t n, const LCurvePoint& point) {
+        std::cout << "  [" << i << "/" << n << "] lambda "
+                  << point.weight_px_per_m << " px/m: reprojection MS "
+                  << point.reprojection_ms_px2 << " px^2, navigation MS "
+                  << point.navigation_ms_m2 << " m^2" << std::endl;
+      });
+  curve.noise_weight_px_per_m = levels.weight_px_per_m;
+  return curve;
 }
 
 void PrintTerms(const NavBundleAdjustmentReport& report) {
@@ -282,12 +331,15 @@ int RunBundleAdjuster(int argc, char** argv) {
                  "do)")
       ->default_val("prior");
   app.add_option("--Nav.weight", weight,
-                 "lambda = sigma_v / sigma_n in px/m; auto: the L-curve's "
-                 "corner (its balance point if it has none); balance: the "
-                 "L-curve's balance point (docs/uwcolmap.md)")
+                 "lambda = sigma_v / sigma_n in px/m; auto: both noise "
+                 "levels estimated from the images-only adjustment and its "
+                 "similarity to the navigation; corner / balance: the "
+                 "L-curve's maximum-curvature corner / balance point "
+                 "(docs/uwcolmap.md)")
       ->default_val("auto");
   app.add_option("--Nav.lcurve_steps", lcurve_steps,
-                 "Adjustments in the L-curve sweep of --Nav.weight auto")
+                 "Adjustments in the L-curve sweep of --Nav.weight "
+                 "corner|balance")
       ->default_val(21);
   return RunCommand(app, argc, argv, [&] {
     CheckOutputPath(flags.input_path, output_path);
@@ -319,37 +371,33 @@ int RunBundleAdjuster(int argc, char** argv) {
     NavBundleAdjustmentReport report;
     if (strategy == "prior" && !inputs.priors.empty()) {
       AlignToPriors(inputs.priors, &model);
-      if (weight == "auto" || weight == "balance") {
-        const double center = StoredPixelSigma(model) / NavSigma(inputs.priors);
-        std::cout << "L-curve: " << lcurve_steps << " adjustments, lambda from "
-                  << center / 30 << " to " << center * 30 << " px/m\n";
-        lcurve = SweepLCurve(
-            options, inputs.priors, rig, inputs.image_times, model,
-            LogSpacedWeights(center / 30.0, center * 30.0, lcurve_steps),
-            [](size_t i, size_t n, const LCurvePoint& point) {
-              std::cout << "  [" << i << "/" << n << "] lambda "
-                        << point.weight_px_per_m << " px/m: reprojection MS "
-                        << point.reprojection_ms_px2 << " px^2, navigation MS "
-                        << point.navigation_ms_m2 << " m^2" << std::endl;
-            });
-        const bool balance =
-            weight == "balance" || !lcurve->corner_weight_px_per_m;
-        if (balance && !lcurve->balance_weight_px_per_m) {
-          throw ErrorAt(
-              "the L-curve has no balance point in the swept "
-              "range; give --Nav.weight explicitly");
+      if (weight == "auto" || weight == "corner" || weight == "balance") {
+        const NoiseLevels levels =
+            PrintNoiseLevels(options, inputs.priors, model);
+        context["noise_levels"] = NoiseLevelsJson(levels);
+        options.weight_px_per_m = levels.weight_px_per_m;
+        if (weight != "auto") {
+          lcurve =
+              SweepAroundEstimate(options, inputs, model, levels, lcurve_steps);
+          const bool corner = weight == "corner";
+          const std::optional<double> chosen =
+              corner ? lcurve->corner_weight_px_per_m
+                     : lcurve->balance_weight_px_per_m;
+          if (!chosen) {
+            throw ErrorAt("the L-curve has no ", weight,
+                          " in the swept range; use --Nav.weight auto or a "
+                          "number");
+          }
+          options.weight_px_per_m = *chosen;
+          std::cout << "L-curve: lambda = " << *chosen << " px/m (" << weight
+                    << ")\n";
         }
-        options.weight_px_per_m = balance ? *lcurve->balance_weight_px_per_m
-                                          : *lcurve->corner_weight_px_per_m;
-        std::cout << "L-curve: lambda = " << options.weight_px_per_m
-                  << " px/m (" << (balance ? "balance point" : "corner")
-                  << ")\n";
       } else {
         try {
           options.weight_px_per_m = std::stod(weight);
         } catch (const std::exception&) {
           throw ErrorAt("--Nav.weight ", weight,
-                        ": a number (px/m), auto or balance");
+                        ": a number (px/m), auto, corner or balance");
         }
       }
       report = AdjustWithNavigation(options, inputs.priors, rig,
@@ -408,8 +456,10 @@ int RunLCurve(int argc, char** argv) {
       "Sweeps the navigation weight lambda of the multiobjective bundle "
       "adjustment over log-spaced values, plots the two objectives "
       "(reprojection and navigation mean squares) in log-log space and "
-      "picks the point of maximum curvature (thesis ch. 4 §5.2.1). Writes "
-      "lcurve.json and lcurve.png; the model is not changed.\n\n"
+      "picks the point of maximum curvature (thesis ch. 4 §5.2.1); also "
+      "reports the balance point and lambda from the estimated noise levels "
+      "(what bundle_adjuster --Nav.weight auto uses). Writes lcurve.json and "
+      "lcurve.png; the model is not changed.\n\n"
       "Example:\n"
       "  uwcolmap lcurve --input_path sparse/0 --output_path lcurve --nav "
       "sim/nav.csv --mount down --lambda_min 0.1 --lambda_max 100",
@@ -439,18 +489,9 @@ int RunLCurve(int argc, char** argv) {
           "with priors)");
     }
     AlignToPriors(inputs.priors, &model);
-    const double center = StoredPixelSigma(model) / NavSigma(inputs.priors);
-    const double low = lambda_min > 0.0 ? lambda_min : center / 30.0;
-    const double high = lambda_max > 0.0 ? lambda_max : center * 30.0;
-    const LCurve curve = SweepLCurve(
-        options, inputs.priors, inputs.rig ? &*inputs.rig : nullptr,
-        inputs.image_times, model, LogSpacedWeights(low, high, steps),
-        [](size_t i, size_t n, const LCurvePoint& point) {
-          std::cout << "[" << i << "/" << n << "] lambda "
-                    << point.weight_px_per_m << " px/m: reprojection MS "
-                    << point.reprojection_ms_px2 << " px^2, navigation MS "
-                    << point.navigation_ms_m2 << " m^2" << std::endl;
-        });
+    const NoiseLevels levels = PrintNoiseLevels(options, inputs.priors, model);
+    const LCurve curve = SweepAroundEstimate(options, inputs, model, levels,
+                                             steps, lambda_min, lambda_max);
     if (curve.corner_weight_px_per_m) {
       std::cout << "Corner: lambda = " << *curve.corner_weight_px_per_m
                 << " px/m\n";
@@ -461,6 +502,8 @@ int RunLCurve(int argc, char** argv) {
       std::cout << "Balance point: lambda = " << *curve.balance_weight_px_per_m
                 << " px/m\n";
     }
+    std::cout << "Noise levels: lambda = " << levels.weight_px_per_m
+              << " px/m\n";
     const std::string json = LCurveJson(curve);
     WriteFilesAtomically({{fs::path(output_path) / "lcurve.json",
                            [&](std::ostream& out) { out << json; }}},

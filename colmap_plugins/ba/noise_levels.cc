@@ -1,0 +1,91 @@
+#include "colmap_plugins/ba/noise_levels.h"
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <Eigen/Cholesky>
+
+#include "colmap_plugins/ba/prior_alignment.h"
+#include "colmap_plugins/util/error.h"
+
+namespace uw {
+
+NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
+                                const std::vector<ImagePosePrior>& priors,
+                                const Reconstruction& model) {
+  Reconstruction images_only = model;
+  NavBundleAdjustmentOptions plain = options;
+  plain.estimate_offset_covariance = false;
+  const NavBundleAdjustmentReport report =
+      AdjustWithNavigation(plain, {}, nullptr, {}, &images_only);
+
+  NoiseLevels levels;
+  double free_intrinsics = 0.0;
+  for (const Camera& camera : images_only.Cameras()) {
+    free_intrinsics += static_cast<double>(camera.params.size()) -
+                       ConstantCameraParams(options, camera.model_id).size();
+  }
+  const double unknowns =
+      3.0 * report.num_points + 6.0 * report.num_images - 7.0 + free_intrinsics;
+  levels.reprojection_dof = 2.0 * report.num_observations - unknowns;
+  if (!(levels.reprojection_dof > 0.0)) {
+    throw ErrorAt("the images leave no degrees of freedom to estimate their ",
+                  "noise: ", report.num_observations, " observations for ",
+                  unknowns, " unknowns");
+  }
+  levels.pixel_sigma =
+      std::sqrt(report.final_terms.at("reprojection").mean_squared *
+                report.num_observations / levels.reprojection_dof);
+
+  AlignToPriors(priors, &images_only);
+  // Whitened residuals, with one offset per dive but the reference one (the
+  // covariance-weighted mean of that dive's residuals) when asked for.
+  std::set<int> dives;
+  for (const ImagePosePrior& prior : priors) dives.insert(prior.dive);
+  const int reference_dive =
+      options.reference_dive != 0 ? options.reference_dive : *dives.begin();
+  std::map<int, Eigen::Vector3d> offsets;
+  for (const int dive : dives) {
+    offsets[dive] = Eigen::Vector3d::Zero();
+    if (!options.dive_offsets || dive == reference_dive) continue;
+    Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+    for (const ImagePosePrior& prior : priors) {
+      if (prior.dive != dive) continue;
+      const Eigen::Matrix3d w = prior.position_covariance.inverse();
+      information += w;
+      weighted +=
+          w * (images_only.FindImage(prior.image_id)->ProjectionCenter() -
+               prior.position_in_world);
+    }
+    offsets[dive] = information.ldlt().solve(weighted);
+  }
+  double chi2 = 0.0;
+  for (const ImagePosePrior& prior : priors) {
+    const Eigen::Vector3d error =
+        images_only.FindImage(prior.image_id)->ProjectionCenter() -
+        prior.position_in_world - offsets.at(prior.dive);
+    chi2 += error.dot(prior.position_covariance.ldlt().solve(error));
+  }
+  const double num_offsets =
+      options.dive_offsets ? static_cast<double>(dives.size()) - 1.0 : 0.0;
+  levels.navigation_dof = 3.0 * priors.size() - 7.0 - 3.0 * num_offsets;
+  if (!(levels.navigation_dof > 0.0)) {
+    throw ErrorAt("the ", priors.size(),
+                  " navigation priors leave no degrees of freedom to "
+                  "estimate their noise");
+  }
+  levels.nav_scale = std::sqrt(chi2 / levels.navigation_dof);
+  levels.stated_nav_sigma_m = NavSigma(priors);
+  levels.nav_sigma_m = levels.nav_scale * levels.stated_nav_sigma_m;
+  if (!(levels.nav_sigma_m > 0.0 && std::isfinite(levels.nav_sigma_m))) {
+    throw ErrorAt("the navigation noise estimate is ", levels.nav_sigma_m,
+                  " m: the priors fit the images exactly, so lambda is "
+                  "undefined; give --Nav.weight explicitly");
+  }
+  levels.weight_px_per_m = levels.pixel_sigma / levels.nav_sigma_m;
+  return levels;
+}
+
+}  // namespace uw

@@ -1,0 +1,57 @@
+// The two noise levels of Eq. 1 estimated from the data, and the weight
+// lambda = sigma_v / sigma_n they imply (`--Nav.weight auto`).
+//
+// Variance components at the images-only end of the L-curve (lambda -> 0):
+// there the images alone shape the model and the navigation only places
+// it (a similarity, plus one offset per extra dive), so the degrees of
+// freedom of each residual group are exact:
+//   sigma_v^2 = sum |r_v|^2 / (2M - (3P + 6N - 7 + K))   (px^2 per coordinate)
+//   s_n^2     = sum |S_i e_i|^2 / (3N_p - 7 - 3(D - 1))   (unitless)
+// r_v: reprojection residuals of the images-only adjustment (M
+// observations, P points, N images, K free intrinsics); e_i: camera centre
+// minus prior after the covariance-weighted similarity (and dive offsets),
+// S_i the whitening of the prior's covariance; D dives. s_n is the factor by
+// which the priors' stated sigmas are off, so the navigation noise is
+// sigma_n = s_n * NavSigma(priors) and Eq. 2's weight is
+// lambda = sigma_v / sigma_n.
+//
+// Why not the L-curve's corner: the corner is a property of the plot's
+// shape, not of the noise; on synthetic surveys with known noise it lies
+// 1.05-2.8x from sigma_v / sigma_n, and where the navigation is about as
+// precise as the images Eq. 2's normalisation (priors weighted M/N times a
+// likelihood) keeps the curve from showing a balance of the two noise
+// floors at all. The estimate above is what the L-curve's ends converge
+// to, with the degrees of freedom the fitted parameters take away (the
+// naive per-coordinate mean squares give 0.8x).
+//
+// A model the images deform (wrong distortion, doming) inflates e_i, hence
+// sigma_n, and gives a smaller lambda: the navigation is then trusted less
+// than its noise alone would allow, which keeps its noise out of the shape.
+#pragma once
+
+#include <vector>
+
+#include "colmap_plugins/ba/nav_bundle_adjuster.h"
+#include "colmap_plugins/scene/model.h"
+
+namespace uw {
+
+struct NoiseLevels {
+  double pixel_sigma = 0.0;         // sigma_v, px per image coordinate
+  double nav_scale = 0.0;           // s_n: observed / stated prior sigma
+  double stated_nav_sigma_m = 0.0;  // NavSigma(priors)
+  double nav_sigma_m = 0.0;         // sigma_n = s_n * stated, m
+  double weight_px_per_m = 0.0;     // lambda = sigma_v / sigma_n
+  double reprojection_dof = 0.0;
+  double navigation_dof = 0.0;
+};
+
+// Runs the images-only adjustment (options' intrinsics and loss, no priors,
+// no rig) on a copy of `model`, aligns it to the priors and returns the
+// estimates. Throws uw::Error when a group has no degrees of freedom left
+// or the alignment fails (fewer than 3 or collinear priors).
+NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
+                                const std::vector<ImagePosePrior>& priors,
+                                const Reconstruction& model);
+
+}  // namespace uw

@@ -1,0 +1,98 @@
+#include "colmap_plugins/ba/noise_levels.h"
+
+#include <cmath>
+#include <iostream>
+
+#include <gtest/gtest.h>
+
+#include "colmap_plugins/ba/test_scene.h"
+#include "colmap_plugins/util/error.h"
+
+namespace uw {
+namespace {
+
+// Acceptance 2 of issue 4: with known pixel noise sigma_v and navigation
+// noise sigma_n, the chosen lambda lies within a factor 1.5 of
+// sigma_v / sigma_n, from navigation much worse than the images (0.5 m) to
+// about as good (5 cm at 1 px, where under Eq. 2's weighting the L-curve
+// has no balance point).
+TEST(NoiseLevels, LambdaIsTheRatioOfTheNoiseLevels) {
+  struct Case {
+    double pixel_sigma;
+    double nav_sigma_m;
+  };
+  for (const Case& c : std::vector<Case>{
+           {0.5, 0.3}, {0.5, 0.1}, {1.0, 0.05}, {0.3, 0.5}, {1.0, 0.3}}) {
+    test::TestSceneOptions scene_options;
+    scene_options.num_lines = 2;
+    scene_options.images_per_line = 10;
+    scene_options.num_points = 800;
+    scene_options.pixel_sigma = c.pixel_sigma;
+    scene_options.nav_sigma_m = c.nav_sigma_m;
+    const test::TestScene scene = test::MakeTestScene(scene_options);
+    const NoiseLevels levels = EstimateNoiseLevels(
+        test::FixedIntrinsics(), scene.priors, scene.observed);
+    const double ratio = c.pixel_sigma / c.nav_sigma_m;
+    std::cout << "[ figures ] sigma_v " << c.pixel_sigma << " px, sigma_n "
+              << c.nav_sigma_m << " m: estimated " << levels.pixel_sigma
+              << " px (" << levels.reprojection_dof << " dof), "
+              << levels.nav_sigma_m << " m (" << levels.navigation_dof
+              << " dof); lambda " << levels.weight_px_per_m << " px/m = x"
+              << levels.weight_px_per_m / ratio << " sigma_v/sigma_n\n";
+    EXPECT_LT(std::abs(std::log(levels.weight_px_per_m / ratio)),
+              std::log(1.5));
+    // sigma_v from ~10^4 degrees of freedom; sigma_n from 53.
+    EXPECT_NEAR(levels.pixel_sigma, c.pixel_sigma, 0.05 * c.pixel_sigma);
+    EXPECT_NEAR(levels.nav_sigma_m, c.nav_sigma_m, 0.3 * c.nav_sigma_m);
+  }
+}
+
+// Priors stated 2x too pessimistic, refined intrinsics and dive offsets:
+// the estimate follows the actual noise, not the stated one.
+TEST(NoiseLevels, FollowsTheActualNoiseNotTheStatedOne) {
+  test::TestSceneOptions scene_options;
+  scene_options.num_lines = 4;
+  scene_options.first_line_of_dive_2 = 2;
+  scene_options.dive2_bias = Eigen::Vector3d(2.5, -2.0, 0.1);
+  scene_options.nav_sigma_m = 0.2;
+  test::TestScene scene = test::MakeTestScene(scene_options);
+  for (ImagePosePrior& prior : scene.priors) prior.position_covariance *= 4.0;
+  NavBundleAdjustmentOptions options;
+  options.num_threads = 1;
+  options.dive_offsets = true;
+  const NoiseLevels levels =
+      EstimateNoiseLevels(options, scene.priors, scene.observed);
+  std::cout << "[ figures ] stated 0.4 m, actual 0.2 m, dive bias 3.2 m: "
+               "estimated s_n "
+            << levels.nav_scale << ", sigma_n " << levels.nav_sigma_m
+            << " m, sigma_v " << levels.pixel_sigma << " px, lambda "
+            << levels.weight_px_per_m << " px/m (true "
+            << scene_options.pixel_sigma / scene_options.nav_sigma_m << ")\n";
+  EXPECT_NEAR(levels.stated_nav_sigma_m, 0.4, 1e-12);
+  EXPECT_NEAR(levels.nav_scale, 0.5, 0.1);
+  EXPECT_NEAR(levels.pixel_sigma, 0.5, 0.025);
+  // 32 priors, 4 free intrinsics (f, k1 of one camera): 86 and the rest.
+  EXPECT_DOUBLE_EQ(levels.navigation_dof, 3.0 * 32 - 7.0 - 3.0);
+  // Without offsets the 3.2 m bias between the dives counts as noise.
+  options.dive_offsets = false;
+  EXPECT_GT(
+      EstimateNoiseLevels(options, scene.priors, scene.observed).nav_sigma_m,
+      4.0 * levels.nav_sigma_m);
+}
+
+TEST(NoiseLevels, RejectsPriorsWithoutDegreesOfFreedom) {
+  const test::TestScene scene = test::MakeTestScene({});
+  const std::vector<ImagePosePrior> three(scene.priors.begin(),
+                                          scene.priors.begin() + 3);
+  // 9 coordinates, 7 for the similarity: 2 left, enough.
+  EXPECT_NO_THROW(
+      EstimateNoiseLevels(test::FixedIntrinsics(), three, scene.observed));
+  EXPECT_THROW(
+      EstimateNoiseLevels(test::FixedIntrinsics(),
+                          {scene.priors.begin(), scene.priors.begin() + 2},
+                          scene.observed),
+      Error);
+}
+
+}  // namespace
+}  // namespace uw
