@@ -15,8 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/file.h"
 #include "tests/support/process.h"
+#include "tests/support/truth_comparison.h"
 
 namespace uw {
 namespace {
@@ -110,34 +110,6 @@ TEST(UW_DOMING_SUITE, StockColmapBendsTheStripWithAWrongK1) {
   EXPECT_LT(residual_rms, 0.25 * std::abs(sagitta));
 }
 
-// Model against uwsim's truth, by uwcolmap model_comparer.
-struct Deviation {
-  double camera_rmse_m = 0.0;
-  double surface_rms_m = 0.0;
-  double sagitta_m = 0.0;  // of the surface's deviation, ends vs middle
-  nlohmann::json segments;
-};
-
-Deviation Compare(const fs::path& model, const fs::path& out,
-                  const std::string& alignment) {
-  const auto result = testing::RunProcess(
-      testing::Quoted(kUwcolmap) + " model_comparer --input_path " +
-          testing::Quoted(model) + " --truth_dir " +
-          testing::Quoted(kCaseDir / "sim") + " --alignment " + alignment +
-          " --output_path " + testing::Quoted(out),
-      true);
-  EXPECT_EQ(result.exit_code, 0) << result.output;
-  const nlohmann::json json = nlohmann::json::parse(ReadFileToString(out));
-  return {json["camera_rmse_m"].get<double>(),
-          json["surface"]["rms_m"].get<double>(),
-          json["surface"]["dome"]["sagitta_m"].get<double>(), json["segments"]};
-}
-
-void RunOrFail(const std::string& command) {
-  const auto result = testing::RunProcess(command, true);
-  ASSERT_EQ(result.exit_code, 0) << command << "\n" << result.output;
-}
-
 // Acceptance 1 of issue 4. Stock: colmap mapper (k1 fixed wrong) +
 // similarity to the navigation (uwcolmap model_aligner, as colmap
 // model_aligner would). Ours: uwcolmap bundle_adjuster --Nav.strategy prior
@@ -162,23 +134,29 @@ TEST(UW_DOMING_SUITE, NavigationFusedAdjustmentTakesTheDomeOut) {
                            "ours", "ours_fixed_k1"}) {
     fs::create_directories(dir / name);
   }
-  RunOrFail(testing::Quoted(kUwcolmap) + " model_aligner --input_path " +
-            testing::Quoted(sparse) + " --output_path " +
-            testing::Quoted(dir / "stock_nav") + nav);
-  RunOrFail("colmap bundle_adjuster --input_path " + testing::Quoted(sparse) +
-            " --output_path " + testing::Quoted(dir / "colmap_ba"));
-  RunOrFail(testing::Quoted(kUwcolmap) + " model_aligner --input_path " +
-            testing::Quoted(dir / "colmap_ba") + " --output_path " +
-            testing::Quoted(dir / "self_calibrated_nav") + nav);
-  RunOrFail(adjuster + " --output_path " + testing::Quoted(dir / "ours"));
+  testing::RunOrFail(testing::Quoted(kUwcolmap) +
+                     " model_aligner --input_path " + testing::Quoted(sparse) +
+                     " --output_path " + testing::Quoted(dir / "stock_nav") +
+                     nav);
+  testing::RunOrFail("colmap bundle_adjuster --input_path " +
+                     testing::Quoted(sparse) + " --output_path " +
+                     testing::Quoted(dir / "colmap_ba"));
+  testing::RunOrFail(testing::Quoted(kUwcolmap) +
+                     " model_aligner --input_path " +
+                     testing::Quoted(dir / "colmap_ba") + " --output_path " +
+                     testing::Quoted(dir / "self_calibrated_nav") + nav);
+  testing::RunOrFail(adjuster + " --output_path " +
+                     testing::Quoted(dir / "ours"));
   // The user's calibration kept (k1 fixed, as in the mapper): only the
   // navigation can straighten the strip, with Eq. 2's stiffer weights.
-  RunOrFail(adjuster + " --output_path " +
-            testing::Quoted(dir / "ours_fixed_k1") +
-            " --BundleAdjustment.refine_focal_length 0"
-            " --BundleAdjustment.refine_extra_params 0 --Nav.weighting thesis");
+  testing::RunOrFail(
+      adjuster + " --output_path " + testing::Quoted(dir / "ours_fixed_k1") +
+      " --BundleAdjustment.refine_focal_length 0"
+      " --BundleAdjustment.refine_extra_params 0 --Nav.weighting thesis");
 
-  std::map<std::string, std::pair<Deviation, Deviation>> deviations;
+  std::map<std::string,
+           std::pair<testing::TruthDeviation, testing::TruthDeviation>>
+      deviations;
   std::printf(
       "[ figures ] %-20s %-10s %14s %14s %12s   per-segment scale 3D / "
       "along the wall\n",
@@ -186,9 +164,9 @@ TEST(UW_DOMING_SUITE, NavigationFusedAdjustmentTakesTheDomeOut) {
   for (const char* name :
        {"stock_nav", "self_calibrated_nav", "ours", "ours_fixed_k1"}) {
     for (const char* alignment : {"similarity", "none"}) {
-      const Deviation d = Compare(
-          dir / name, dir / (std::string(name) + "_" + alignment + ".json"),
-          alignment);
+      const testing::TruthDeviation d = testing::CompareWithTruth(
+          kUwcolmap, dir / name, kCaseDir / "sim",
+          dir / (std::string(name) + "_" + alignment + ".json"), alignment);
       std::string scales;
       for (const nlohmann::json& segment : d.segments) {
         char text[40];
@@ -204,10 +182,11 @@ TEST(UW_DOMING_SUITE, NavigationFusedAdjustmentTakesTheDomeOut) {
                                         : deviations[name].first) = d;
     }
   }
-  const Deviation& stock = deviations["stock_nav"].first;
-  const Deviation& self_calibrated = deviations["self_calibrated_nav"].first;
-  const Deviation& ours = deviations["ours"].first;
-  const Deviation& fixed = deviations["ours_fixed_k1"].first;
+  const testing::TruthDeviation& stock = deviations["stock_nav"].first;
+  const testing::TruthDeviation& self_calibrated =
+      deviations["self_calibrated_nav"].first;
+  const testing::TruthDeviation& ours = deviations["ours"].first;
+  const testing::TruthDeviation& fixed = deviations["ours_fixed_k1"].first;
   std::printf(
       "[ figures ] stock / ours: camera RMSE x%.1f, surface RMS x%.1f, "
       "sagitta x%.1f; with k1 kept fixed x%.1f, x%.1f, x%.1f\n",
