@@ -14,9 +14,9 @@
 #include <tbb/global_control.h>
 #include <nlohmann/json.hpp>
 
+#include "colmap_plugins/mesh/ray_caster.h"
 #include "colmap_plugins/util/file.h"
 #include "sim/generate.h"
-#include "sim/ray_caster.h"
 
 namespace {
 
@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
       MakeWorld(config.world, config.world_options, config.seed);
   const std::vector<SurveyStation> stations = PlanSurvey(
       config.survey, world, config.camera, config.survey_options, config.seed);
-  const RayCaster caster(world.mesh);
+  const uw::RayCaster caster(world.mesh);
   const double pixels =
       static_cast<double>(config.camera.width * config.camera.height);
   const unsigned cores = std::thread::hardware_concurrency();

@@ -9,8 +9,8 @@
 #include "colmap_plugins/util/file.h"
 #include "laserscale/laser_setup.h"
 #include "sim/laser_images.h"
-#include "sim/mesh.h"
-#include "sim/ray_caster.h"
+#include "colmap_plugins/mesh/mesh.h"
+#include "colmap_plugins/mesh/ray_caster.h"
 #include "sim/rig.h"
 
 namespace uw::sim {

@@ -12,7 +12,7 @@
 #include "colmap_plugins/scene/model.h"
 #include "laserscale/laser_setup.h"
 #include "sim/laser.h"
-#include "sim/ray_caster.h"
+#include "colmap_plugins/mesh/ray_caster.h"
 #include "sim/survey.h"
 
 namespace uw::sim {

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/util/error.h"
-#include "sim/test_meshes.h"
+#include "colmap_plugins/mesh/test_meshes.h"
 
 namespace uw::sim {
 namespace {

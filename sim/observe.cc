@@ -9,7 +9,7 @@
 #include "colmap_plugins/scene/model_io.h"
 #include "colmap_plugins/util/error.h"
 #include "sim/random.h"
-#include "sim/ray_caster.h"
+#include "colmap_plugins/mesh/ray_caster.h"
 
 namespace uw::sim {
 namespace {

@@ -13,7 +13,7 @@
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
 #include "sim/generate.h"
-#include "sim/test_meshes.h"
+#include "colmap_plugins/mesh/test_meshes.h"
 #include "sim/test_sim_config.h"
 
 namespace uw::sim {

@@ -29,7 +29,7 @@
 
 #include "colmap_plugins/scene/model.h"
 #include "sim/laser.h"
-#include "sim/ray_caster.h"
+#include "colmap_plugins/mesh/ray_caster.h"
 #include "sim/texture.h"
 
 namespace uw::sim {

@@ -15,7 +15,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "colmap_plugins/util/error.h"
-#include "sim/test_meshes.h"
+#include "colmap_plugins/mesh/test_meshes.h"
 
 namespace uw::sim {
 namespace {

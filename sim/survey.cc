@@ -12,7 +12,7 @@
 #include "colmap_plugins/nav/camera_mount.h"
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/json_fields.h"
-#include "sim/ray_caster.h"
+#include "colmap_plugins/mesh/ray_caster.h"
 #include "sim/world.h"
 
 namespace uw::sim {

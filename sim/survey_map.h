@@ -12,7 +12,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
-#include "sim/mesh.h"
+#include "colmap_plugins/mesh/mesh.h"
 
 namespace uw::sim {
 

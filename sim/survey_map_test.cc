@@ -11,7 +11,7 @@
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
 #include "sim/navigation.h"
-#include "sim/test_meshes.h"
+#include "colmap_plugins/mesh/test_meshes.h"
 
 namespace uw::sim {
 namespace {

@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "colmap_plugins/util/error.h"
-#include "sim/ray_caster.h"
-#include "sim/test_meshes.h"
+#include "colmap_plugins/mesh/ray_caster.h"
+#include "colmap_plugins/mesh/test_meshes.h"
 #include "sim/world.h"
 
 namespace uw::sim {

@@ -22,7 +22,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json_fwd.hpp>
 
-#include "sim/mesh.h"
+#include "colmap_plugins/mesh/mesh.h"
 #include "sim/procedural_texture.h"
 #include "sim/texture.h"
 

@@ -10,12 +10,12 @@
 #include "colmap_plugins/align/reference_positions.h"
 #include "colmap_plugins/exe/command.h"
 #include "colmap_plugins/exe/nav_flags.h"
+#include "colmap_plugins/mesh/mesh.h"
 #include "colmap_plugins/nav/camera_prior.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
 #include "colmap_plugins/util/json_fields.h"
-#include "sim/mesh.h"
 
 namespace uw {
 namespace {
@@ -595,7 +595,7 @@ int RunModelComparer(int argc, char** argv) {
     const Reconstruction reference = ReadModel(reference_path);
     std::optional<MeshDistance> surface;
     if (!mesh_path.empty()) {
-      sim::TriangleMesh mesh = sim::ReadPly(mesh_path);
+      TriangleMesh mesh = ReadPly(mesh_path);
       surface.emplace(std::move(mesh.vertices), std::move(mesh.triangles));
     }
     const ModelComparison comparison =

@@ -1,4 +1,4 @@
-#include "sim/ray_caster.h"
+#include "colmap_plugins/mesh/ray_caster.h"
 
 #include <cmath>
 #include <random>
@@ -8,10 +8,10 @@
 #include <tbb/parallel_for.h>
 #include <Eigen/Geometry>
 
+#include "colmap_plugins/mesh/test_meshes.h"
 #include "colmap_plugins/util/error.h"
-#include "sim/test_meshes.h"
 
-namespace uw::sim {
+namespace uw {
 namespace {
 
 // The plane z = 0 over [-5, 5]^2, facing +z.
@@ -361,4 +361,4 @@ TEST(RayCaster, RejectsBadMeshes) {
 }
 
 }  // namespace
-}  // namespace uw::sim
+}  // namespace uw

@@ -1,4 +1,4 @@
-#include "sim/ray_caster.h"
+#include "colmap_plugins/mesh/ray_caster.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -11,7 +11,7 @@
 
 #include "colmap_plugins/util/error.h"
 
-namespace uw::sim {
+namespace uw {
 namespace {
 
 // Float rounding of centred coordinates is FLT_EPSILON times their size;
@@ -379,4 +379,4 @@ void RayCaster::OccludedMany(const std::vector<Ray>& rays,
 
 double RayCaster::SurfaceEpsilon() const { return impl_->surface_epsilon; }
 
-}  // namespace uw::sim
+}  // namespace uw

@@ -17,9 +17,9 @@
 
 #include <Eigen/Core>
 
-#include "sim/mesh.h"
+#include "colmap_plugins/mesh/mesh.h"
 
-namespace uw::sim {
+namespace uw {
 
 struct Ray {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
@@ -99,4 +99,4 @@ class RayCaster {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace uw::sim
+}  // namespace uw

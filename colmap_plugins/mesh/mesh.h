@@ -1,5 +1,6 @@
-// Triangle meshes of synthetic worlds, in metres, in the world frame of the
-// survey (local East-North-Up: x east, y north, z up; DESIGN.md §4).
+// Triangle meshes: uwsim's worlds (metres, the survey's local East-North-Up
+// frame, DESIGN.md §4) and the surfaces of reconstructed models (model
+// units and frame), which laser spots are ray cast onto.
 #pragma once
 
 #include <filesystem>
@@ -7,7 +8,7 @@
 
 #include <Eigen/Core>
 
-namespace uw::sim {
+namespace uw {
 
 struct TriangleMesh {
   std::vector<Eigen::Vector3d> vertices;
@@ -26,4 +27,4 @@ void WritePly(const TriangleMesh& mesh, const std::filesystem::path& path);
 // vertices and triangle faces; throws uw::Error naming the file otherwise.
 TriangleMesh ReadPly(const std::filesystem::path& path);
 
-}  // namespace uw::sim
+}  // namespace uw

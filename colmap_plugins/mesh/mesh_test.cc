@@ -1,4 +1,4 @@
-#include "sim/mesh.h"
+#include "colmap_plugins/mesh/mesh.h"
 
 #include <cmath>
 #include <cstring>
@@ -11,7 +11,7 @@
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
 
-namespace uw::sim {
+namespace uw {
 namespace {
 
 class MeshTest : public ::testing::Test {
@@ -301,4 +301,4 @@ TEST_F(MeshTest, WriteRefusesMeshesItCouldNotReadBack) {
 }
 
 }  // namespace
-}  // namespace uw::sim
+}  // namespace uw

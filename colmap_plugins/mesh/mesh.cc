@@ -1,4 +1,4 @@
-#include "sim/mesh.h"
+#include "colmap_plugins/mesh/mesh.h"
 
 #include <cctype>
 #include <charconv>
@@ -13,7 +13,7 @@
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
 
-namespace uw::sim {
+namespace uw {
 namespace {
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
@@ -630,4 +630,4 @@ TriangleMesh ReadPly(const std::filesystem::path& path) {
                        : ReadAscii(data, header, layout, source);
 }
 
-}  // namespace uw::sim
+}  // namespace uw

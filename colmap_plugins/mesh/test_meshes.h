@@ -1,9 +1,9 @@
 // Small meshes with a known answer for the sim tests.
 #pragma once
 
-#include "sim/mesh.h"
+#include "colmap_plugins/mesh/mesh.h"
 
-namespace uw::sim {
+namespace uw {
 
 // Appends a grid of n_u x n_v quads over the parallelogram corner + [0,1] u
 // + [0,1] v, counter-clockwise seen from the side u x v points to.
@@ -28,4 +28,4 @@ inline void AddGrid(const Eigen::Vector3d& corner, const Eigen::Vector3d& u,
   }
 }
 
-}  // namespace uw::sim
+}  // namespace uw
