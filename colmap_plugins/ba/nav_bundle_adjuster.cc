@@ -169,9 +169,12 @@ class Adjustment {
       const Weights& weights, ceres::Problem* problem,
       const std::map<std::string, std::vector<ceres::ResidualBlockId>>& terms)
       const;
+  // Whether the placement rounds of Run apply: plain position priors and
+  // nothing else that sees the model's placement.
+  bool PlacementApplies() const;
   // Moves the model by the similarity that minimises the position priors'
   // term for its current shape; false when that similarity is the identity
-  // (to rounding) or does not apply (see Run).
+  // (to rounding).
   bool ReplaceOnPriors();
   void EstimateOffsetCovariance(NavBundleAdjustmentReport* report);
   void FillPriorResiduals(NavBundleAdjustmentReport* report) const;
@@ -637,12 +640,13 @@ std::map<std::string, CostTerm> Adjustment::EvaluateTerms(
   return result;
 }
 
+bool Adjustment::PlacementApplies() const {
+  return !priors_.empty() && options_.weighting == NavWeighting::kLikelihood &&
+         !options_.use_attitude && options_.nav_loss == LossType::kTrivial &&
+         rig_pairings_.empty() && options_.refine_extrinsics;
+}
+
 bool Adjustment::ReplaceOnPriors() {
-  if (priors_.empty() || options_.weighting != NavWeighting::kLikelihood ||
-      options_.use_attitude || options_.nav_loss != LossType::kTrivial ||
-      !rig_pairings_.empty() || !options_.refine_extrinsics) {
-    return false;
-  }
   std::vector<Eigen::Vector3d> centers;
   std::vector<Eigen::Vector3d> targets;
   std::vector<Eigen::Matrix3d> covariances;
@@ -894,22 +898,28 @@ NavBundleAdjustmentReport Adjustment::Run() {
   ceres::Solver::Summary summary;
   const auto start = Clock::now();
   constexpr int kMaxPlacementRounds = 5;
+  const bool placement = PlacementApplies();
   const int round_iterations =
       std::max(10, options_.max_num_iterations / kMaxPlacementRounds);
   report.num_iterations = 0;
   for (int round = 1;; ++round) {
     const int remaining = options_.max_num_iterations - report.num_iterations;
     solver_options.max_num_iterations =
-        round == kMaxPlacementRounds ? remaining
-                                     : std::min(remaining, round_iterations);
+        placement && round < kMaxPlacementRounds
+            ? std::min(remaining, round_iterations)
+            : remaining;
     ceres::Solve(solver_options, &problem, &summary);
     if (summary.termination_type == ceres::FAILURE) {
       throw ErrorAt("bundle adjustment failed: ", summary.message);
     }
     report.num_iterations += static_cast<int>(summary.iterations.size()) - 1;
-    if (round == kMaxPlacementRounds ||
-        report.num_iterations >= options_.max_num_iterations ||
-        !ReplaceOnPriors()) {
+    if (!placement || round == kMaxPlacementRounds ||
+        report.num_iterations >= options_.max_num_iterations) {
+      break;
+    }
+    // Solve again after a move, or when the round ran out of iterations.
+    if (!ReplaceOnPriors() &&
+        summary.termination_type != ceres::NO_CONVERGENCE) {
       break;
     }
   }
