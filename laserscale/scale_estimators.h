@@ -15,6 +15,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -53,5 +54,31 @@ ScaleEstimate PcmScale(const Eigen::Vector3d& hit1_in_world,
 ScaleEstimate DirectScale(const Eigen::Vector3d& hit1_in_world,
                           const Eigen::Vector3d& hit2_in_world,
                           double separation_m);
+
+// Davis & Tusting's (1991) image scaling, the baseline of thesis ch. 3
+// [L2290-L2303], in our reading (the thesis gives no formulas): four lasers
+// parallel to the optical axis, origins O_i on Π. Two spots i, j a
+// normalised image distance |n_i − n_j| apart (undistorted, z = 1) put the
+// scene at depth Z_ij = |O_i − O_j| / |n_i − n_j| around their midpoint, as
+// on a surface square to the beams. The six pairs fit the plane
+// 1/Z(n) = a + b n_x + c n_y (least squares; a plane's inverse depth is
+// affine in n), which is the "arbitrary tilt and pan" the method recovers;
+// each spot is then back-projected onto that plane, and the six distances
+// between them are measured in metres. The model's length of the same
+// segments (the perfect image-model association the thesis assumes) is the
+// distance between the spots' ray-cast hits, so
+//   s = Σ |Q_i − Q_j| / Σ |X_i − X_j|.
+// Exact on a plane square to the beams and within 0.02 % on one tilted by
+// up to 40 deg (a pair's spacing gives the depth at its midpoint only
+// approximately); wrong where the relief departs from a plane.
+// `lasers`, `spots_normalized` and `hits_in_world` are parallel arrays.
+ScaleEstimate DavisTustingScale(
+    const std::vector<Laser>& lasers,
+    const std::vector<Eigen::Vector2d>& spots_normalized,
+    const std::vector<Eigen::Vector3d>& hits_in_world);
+
+// Davis & Tusting's method needs each direction within this angle of the
+// optical axis.
+inline constexpr double kDavisTustingMaxAxisAngleDeg = 0.5;
 
 }  // namespace uw

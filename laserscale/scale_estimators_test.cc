@@ -80,8 +80,7 @@ TEST(PcmScale, IsExactForSymmetricParallelPairsAtAnyDepths) {
     // less than the origins' distance on Π).
     const Eigen::Vector3d across = l2.origin_in_cam - l1.origin_in_cam;
     const double separation =
-        (across - across.dot(l1.direction_in_cam) * l1.direction_in_cam)
-            .norm();
+        (across - across.dot(l1.direction_in_cam) * l1.direction_in_cam).norm();
     for (const auto& [t1, t2] : {std::pair{2.0, 2.0}, std::pair{2.0, 3.1}}) {
       for (const double k : kModelScales) {
         const ScaleEstimate estimate =
@@ -131,6 +130,79 @@ TEST(DirectScale, IsRightOnlyOnAPerpendicularSurface) {
       *DirectScale(Along(l1, 3.0), Along(l2, 3.0 + depth_step), separation)
            .scale,
       std::cos(M_PI / 6.0), 1e-12);
+}
+
+// The four beams of set-up A hitting the plane through (0, 0, depth) with
+// the given normal (camera frame): the spots (normalised image coordinates)
+// and the hits of a model k times too large.
+struct PlaneShot {
+  std::vector<Eigen::Vector2d> spots;
+  std::vector<Eigen::Vector3d> hits;
+};
+PlaneShot ShootPlane(const LaserSetup& setup, double depth,
+                     const Eigen::Vector3d& normal, double model_scale) {
+  PlaneShot shot;
+  for (const Laser& laser : setup.lasers) {
+    const double t =
+        (Eigen::Vector3d(0, 0, depth) - laser.origin_in_cam).dot(normal) /
+        laser.direction_in_cam.dot(normal);
+    const Eigen::Vector3d hit = Along(laser, t);
+    shot.spots.push_back(hit.head<2>() / hit.z());
+    shot.hits.push_back(model_scale * hit);
+  }
+  return shot;
+}
+
+TEST(DavisTustingScale, IsRightOnPlanesAndWrongOnRelief) {
+  const LaserSetup a = ThesisSetup("A");
+  for (const double k : kModelScales) {
+    const PlaneShot square_on = ShootPlane(a, 3.0, Eigen::Vector3d::UnitZ(), k);
+    const ScaleEstimate estimate =
+        DavisTustingScale(a.lasers, square_on.spots, square_on.hits);
+    ASSERT_TRUE(estimate.scale) << estimate.problem;
+    EXPECT_NEAR(*estimate.scale, 1.0 / k, 1e-12 / k);
+  }
+  // A tilted plane: the pairs' spacings measure the depth at their
+  // midpoints only approximately, so a small error grows with the tilt, but
+  // the fitted plane takes the tilt out (0.016 % at 40 deg).
+  double previous_error = 0.0;
+  for (const double angle_deg : {10.0, 25.0, 40.0}) {
+    const double angle = angle_deg * M_PI / 180.0;
+    const PlaneShot tilted = ShootPlane(
+        a, 3.0, Eigen::Vector3d(std::sin(angle), 0.0, std::cos(angle)), 1.0);
+    const double error = std::abs(
+        *DavisTustingScale(a.lasers, tilted.spots, tilted.hits).scale - 1.0);
+    EXPECT_GT(error, previous_error);
+    EXPECT_LT(error, 5e-4) << angle_deg << " deg";
+    previous_error = error;
+  }
+  // Relief: one hit 10 cm proud of the square-on plane.
+  PlaneShot bumpy = ShootPlane(a, 3.0, Eigen::Vector3d::UnitZ(), 1.0);
+  const double t = 2.9 / a.lasers[0].direction_in_cam.z();
+  bumpy.hits[0] = Along(a.lasers[0], t);
+  bumpy.spots[0] = bumpy.hits[0].head<2>() / bumpy.hits[0].z();
+  EXPECT_GT(
+      std::abs(*DavisTustingScale(a.lasers, bumpy.spots, bumpy.hits).scale -
+               1.0),
+      0.005);
+}
+
+TEST(DavisTustingScale, RefusesLasersOffTheAxis) {
+  for (const std::string name : {"B", "C"}) {
+    const LaserSetup setup = ThesisSetup(name);
+    const PlaneShot shot =
+        ShootPlane(setup, 3.0, Eigen::Vector3d::UnitZ(), 1.0);
+    const ScaleEstimate estimate =
+        DavisTustingScale(setup.lasers, shot.spots, shot.hits);
+    EXPECT_FALSE(estimate.scale);
+    EXPECT_NE(estimate.problem.find("parallel to the optical axis"),
+              std::string::npos)
+        << estimate.problem;
+  }
+  const LaserSetup a = ThesisSetup("A");
+  const PlaneShot shot = ShootPlane(a, 3.0, Eigen::Vector3d::UnitZ(), 1.0);
+  std::vector<Laser> three(a.lasers.begin(), a.lasers.begin() + 3);
+  EXPECT_FALSE(DavisTustingScale(three, shot.spots, shot.hits).scale);
 }
 
 TEST(ScaleEstimators, ImpossibleEstimatesSayWhyAndCarryNoScale) {

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/util/json_fields.h"
-#include "sim/random.h"
+#include "colmap_plugins/util/random.h"
 #include "sim/rig.h"
 
 namespace uw::sim {

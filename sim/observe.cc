@@ -8,7 +8,7 @@
 
 #include "colmap_plugins/scene/model_io.h"
 #include "colmap_plugins/util/error.h"
-#include "sim/random.h"
+#include "colmap_plugins/util/random.h"
 #include "colmap_plugins/mesh/ray_caster.h"
 
 namespace uw::sim {

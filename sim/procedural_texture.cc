@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "colmap_plugins/util/error.h"
-#include "sim/random.h"
+#include "colmap_plugins/util/random.h"
 
 namespace uw::sim {
 namespace {

@@ -14,7 +14,7 @@
 
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/json_fields.h"
-#include "sim/random.h"
+#include "colmap_plugins/util/random.h"
 
 namespace uw::sim {
 namespace {

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/util/error.h"
-#include "sim/random.h"
+#include "colmap_plugins/util/random.h"
 
 namespace uw::sim {
 namespace {

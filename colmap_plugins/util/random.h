@@ -1,14 +1,16 @@
 // SplitMix64 (Steele, Lea & Flood 2014): the one source of randomness of
-// uwsim. Its integer arithmetic gives the same numbers on every platform
-// and compiler (std distributions do not), and as a pure function of a key
-// it serves counter-based generators whose results do not depend on how
-// work is split between threads.
+// uwsim and of laserscale's Monte Carlo. Its integer arithmetic gives the same
+// numbers on every platform and compiler (std distributions do not), and as a
+// pure function of a key it serves counter-based generators whose results do
+// not depend on how work is split between threads.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 
-namespace uw::sim {
+#include <Eigen/Core>
+
+namespace uw {
 
 inline constexpr uint64_t kSplitMix64Gamma = 0x9E3779B97F4A7C15ull;
 
@@ -41,9 +43,16 @@ class SplitMix64Stream {
     const double radius = std::sqrt(-2.0 * std::log(1.0 - Uniform()));
     return radius * std::cos(6.283185307179586 * Uniform());
   }
+  // Two independent standard normals by Box-Muller (both of the pair): half
+  // the cost per number of Gaussian(), for the Monte Carlo's inner loops.
+  Eigen::Vector2d GaussianPair() {
+    const double radius = std::sqrt(-2.0 * std::log(1.0 - Uniform()));
+    const double angle = 6.283185307179586 * Uniform();
+    return {radius * std::cos(angle), radius * std::sin(angle)};
+  }
 
  private:
   uint64_t state_;
 };
 
-}  // namespace uw::sim
+}  // namespace uw

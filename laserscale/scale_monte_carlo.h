@@ -1,0 +1,124 @@
+// The scale of a model from one laser image, with its uncertainty by Monte
+// Carlo (ch4 spec §4): each iteration re-samples the image's features with
+// the localization's own noise level and re-localizes the image (from the
+// nominal pose on the fixed inliers and 3D points, the spec's "cheaper
+// option", equivalent for small noise: by default one Gauss-Newton step
+// with the nominal Jacobian, LinearizedPose; or a full refinement), draws
+// each spot
+// from its covariance and each laser's direction and origin from the
+// calibration's, and runs the whole chain: ray cast, estimator, scale. No
+// distribution in between is approximated: the spread of the scales is the
+// uncertainty.
+//
+// Iteration n of image i draws from SplitMix64 keyed by (seed, i, n), so a
+// result is identical for any thread count and any split of the work.
+//
+// Scales are s = m / m̂ (multiply the model by s to get metres); the scale
+// error of a model meant to be metric is s - 1.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "colmap_plugins/mesh/ray_caster.h"
+#include "colmap_plugins/scene/model.h"
+#include "laserscale/laser_setup.h"
+#include "laserscale/localization.h"
+#include "laserscale/scale_items.h"
+
+namespace uw {
+
+// A detected spot: its centre (COLMAP pixels) and the covariance of that
+// centre (px^2), as the detector gives them.
+struct Spot {
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+};
+
+// Everything one laser image contributes.
+struct LaserImage {
+  std::string name;
+  Camera camera;
+  // The localization's inliers and its result.
+  std::vector<Correspondence2D3D> matches;
+  Rigid3d cam_from_world;
+  double feature_sigma_px = 0.0;  // the localization's RMS error
+  // One per laser of the set-up; std::nullopt: not (confidently) detected.
+  std::vector<std::optional<Spot>> spots;
+};
+
+struct MonteCarloOptions {
+  int num_iterations = 5000;  // the thesis's N_MC
+  uint64_t seed = 0;
+  // What is re-sampled (all of it by default, as in the thesis).
+  bool sample_features = true;
+  bool sample_spots = true;
+  bool sample_calibration = true;  // directions and origins
+  // false: the linearized re-localization (LinearizedPose, ~20x faster);
+  // true: a refinement to convergence (RefinePose) every iteration. Both
+  // give the same σ to < 1 % (scale_monte_carlo_test).
+  bool exact_relocalization = false;
+  int max_refine_iterations = 10;  // with exact_relocalization
+  // The running mean and σ of the image's scale are recorded every this
+  // many iterations (ch4 spec §4.3, the thesis's Fig. 19).
+  int convergence_every = 50;
+  // Acceptance (ch4 spec §4.5): at least this many detected lasers, and no
+  // item's nominal scale further than max_item_spread (relative) from the
+  // items' median (the scale is locally constant; a larger spread betrays
+  // a calibration error).
+  int min_lasers = 2;
+  double max_item_spread = 0.02;
+  // Threads (<= 0: all cores). The result does not depend on it.
+  int num_threads = 0;
+
+  void Check() const;  // throws uw::Error naming the field
+};
+
+// Mean, σ (n - 1) and percentiles (linear interpolation) of valid samples.
+struct SampleSummary {
+  size_t num_samples = 0;  // valid ones
+  double mean = 0.0;
+  double std_dev = 0.0;
+  double p2_5 = 0.0, p16 = 0.0, p50 = 0.0, p84 = 0.0, p97_5 = 0.0;
+};
+SampleSummary Summarize(std::vector<double> samples);
+
+struct ItemResult {
+  ScaleItem item;
+  ItemScale nominal;  // from the nominal inputs
+  SampleSummary monte_carlo;
+  size_t num_invalid = 0;       // iterations without a scale
+  std::string first_problem;    // the first such iteration's reason
+  std::vector<double> samples;  // valid samples, in iteration order
+};
+
+struct ConvergencePoint {
+  int iterations = 0;
+  double mean = 0.0;
+  double std_dev = 0.0;
+};
+
+struct ImageScaleResult {
+  std::string image;
+  ScaleMethod method = ScaleMethod::kFum;
+  std::vector<ItemResult> items;
+  // The image's scale: per iteration the mean of its items' valid scales
+  // (so the shared pose's correlation is kept, ch4 spec §4.4).
+  std::optional<double> nominal;
+  SampleSummary monte_carlo;
+  std::vector<double> samples;
+  std::vector<ConvergencePoint> convergence;
+  bool accepted = false;
+  std::string rejection;  // why not accepted
+};
+
+ImageScaleResult EstimateImageScale(const LaserImage& image, int image_index,
+                                    const LaserSetup& setup,
+                                    const RayCaster& caster, ScaleMethod method,
+                                    const MonteCarloOptions& options);
+
+}  // namespace uw

@@ -1,0 +1,240 @@
+#include "laserscale/scale_monte_carlo.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <Eigen/Geometry>
+
+#include "colmap_plugins/mesh/test_meshes.h"
+#include "laserscale/laser_experiment.h"
+#include "sim/laser.h"
+
+namespace uw {
+namespace {
+
+Camera TestCamera() {
+  Camera camera;
+  camera.camera_id = 1;
+  camera.model_id = CameraModelId::kSimpleRadial;
+  camera.width = 1024;
+  camera.height = 768;
+  camera.params = {850.0, 512.0, 384.0, -0.04};
+  return camera;
+}
+
+// A wall 3 m in front of the camera, tilted 20 degrees, with a 10 cm step
+// (relief) across its middle; the world frame is the camera's turned and
+// moved.
+struct Scene {
+  TriangleMesh world_mesh;
+  Rigid3d cam_from_world;
+};
+Scene MakeScene() {
+  Scene scene;
+  const double tilt = 20.0 * M_PI / 180.0;
+  const Eigen::Vector3d u(std::cos(tilt), 0.0, std::sin(tilt));
+  const Eigen::Vector3d v(0.0, 1.0, 0.0);
+  const Eigen::Vector3d corner = Eigen::Vector3d(0, 0, 3) - 4.0 * u - 4.0 * v;
+  AddGrid(corner, 8.0 * u, 4.0 * v, 16, 8, &scene.world_mesh);
+  AddGrid(corner + 4.0 * v + Eigen::Vector3d(0, 0, 0.1), 8.0 * u, 4.0 * v, 16,
+          8, &scene.world_mesh);
+  const Eigen::Quaterniond rotation(
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -2, 3).normalized()));
+  const Eigen::Vector3d offset(2.0, 1.0, -5.0);
+  for (Eigen::Vector3d& vertex : scene.world_mesh.vertices) {
+    vertex = rotation * vertex + offset;
+  }
+  scene.cam_from_world.rotation = rotation.conjugate();
+  scene.cam_from_world.translation = -(rotation.conjugate() * offset);
+  return scene;
+}
+
+LaserSetup SetupC() {
+  sim::LaserOptions options;
+  options.setup = "C";
+  return sim::TrueLaserSetup(options);
+}
+
+struct Case {
+  SyntheticShot shot;
+  TriangleMesh model_mesh;
+};
+Case MakeCase(const ShotNoise& noise, double model_scale, uint64_t seed) {
+  const Scene scene = MakeScene();
+  const RayCaster world_caster(scene.world_mesh);
+  ShotOptions options;
+  options.noise = noise;
+  options.model_scale = model_scale;
+  Case result{MakeSyntheticShot(world_caster, TestCamera(),
+                                scene.cam_from_world, SetupC(), options, seed),
+              ScaledMesh(scene.world_mesh, model_scale)};
+  EXPECT_TRUE(result.shot.localized) << result.shot.problem;
+  return result;
+}
+
+ShotNoise Noisy() {
+  ShotNoise noise;
+  noise.feature_px = 0.5;
+  noise.spot_px = 0.5;
+  noise.direction_deg = 0.05;
+  noise.origin_m = 0.001;
+  return noise;
+}
+
+TEST(EstimateImageScale, NoiseFreeEverySampleIsOneOverK) {
+  for (const double k : {0.237, 4.2}) {
+    const Case c = MakeCase(ShotNoise(), k, 1);
+    const RayCaster caster(c.model_mesh);
+    MonteCarloOptions options;
+    options.num_iterations = 200;
+    const ImageScaleResult result =
+        EstimateImageScale(c.shot.image, 0, c.shot.calibration, caster,
+                           ScaleMethod::kFum, options);
+    ASSERT_TRUE(result.nominal);
+    EXPECT_NEAR(*result.nominal * k, 1.0, 1e-9);
+    EXPECT_EQ(result.monte_carlo.num_samples, 200u);
+    EXPECT_NEAR(result.monte_carlo.p2_5 * k, 1.0, 1e-9);
+    EXPECT_NEAR(result.monte_carlo.p97_5 * k, 1.0, 1e-9);
+    EXPECT_TRUE(result.accepted) << result.rejection;
+    ASSERT_EQ(result.items.size(), 4u);
+    for (const ItemResult& item : result.items) {
+      EXPECT_EQ(item.num_invalid, 0u);
+      EXPECT_NEAR(item.monte_carlo.mean * k, 1.0, 1e-9);
+    }
+  }
+}
+
+TEST(EstimateImageScale, SameResultOnAnyThreadCount) {
+  const Case c = MakeCase(Noisy(), 1.0, 2);
+  const RayCaster caster(c.model_mesh);
+  MonteCarloOptions options;
+  options.num_iterations = 700;
+  options.seed = 11;
+  options.num_threads = 1;
+  const ImageScaleResult one = EstimateImageScale(
+      c.shot.image, 3, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  options.num_threads = 2;
+  const ImageScaleResult two = EstimateImageScale(
+      c.shot.image, 3, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  EXPECT_EQ(one.samples, two.samples);
+  EXPECT_GT(one.monte_carlo.std_dev, 0.0);
+  // Another image index or seed draws other numbers.
+  const ImageScaleResult other = EstimateImageScale(
+      c.shot.image, 4, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  EXPECT_NE(one.samples, other.samples);
+}
+
+// The linearized re-localization against a refinement to convergence on the
+// same draws: sample by sample the same scales.
+TEST(EstimateImageScale, LinearizedRelocalizationMatchesTheFullOne) {
+  ShotNoise noise;
+  noise.feature_px = 1.0;
+  const Case c = MakeCase(noise, 1.0, 3);
+  const RayCaster caster(c.model_mesh);
+  MonteCarloOptions options;
+  options.num_iterations = 400;
+  options.sample_spots = false;
+  options.sample_calibration = false;
+  const ImageScaleResult linear = EstimateImageScale(
+      c.shot.image, 0, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  options.exact_relocalization = true;
+  const ImageScaleResult exact = EstimateImageScale(
+      c.shot.image, 0, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  ASSERT_EQ(linear.samples.size(), exact.samples.size());
+  double max_difference = 0.0;
+  for (size_t i = 0; i < linear.samples.size(); ++i) {
+    max_difference = std::max(max_difference,
+                              std::abs(linear.samples[i] - exact.samples[i]));
+  }
+  EXPECT_GT(exact.monte_carlo.std_dev, 1e-5);
+  EXPECT_LT(max_difference, 0.01 * exact.monte_carlo.std_dev);
+  EXPECT_NEAR(linear.monte_carlo.std_dev / exact.monte_carlo.std_dev, 1.0,
+              0.01);
+}
+
+TEST(EstimateImageScale, SummariesAndConvergenceTrace) {
+  const Case c = MakeCase(Noisy(), 1.0, 4);
+  const RayCaster caster(c.model_mesh);
+  MonteCarloOptions options;
+  options.num_iterations = 1000;
+  options.convergence_every = 100;
+  const ImageScaleResult result = EstimateImageScale(
+      c.shot.image, 0, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  ASSERT_EQ(result.convergence.size(), 10u);
+  EXPECT_EQ(result.convergence.back().iterations, 1000);
+  EXPECT_NEAR(result.convergence.back().mean, result.monte_carlo.mean, 1e-12);
+  EXPECT_NEAR(result.convergence.back().std_dev, result.monte_carlo.std_dev,
+              1e-9);
+  const SampleSummary& mc = result.monte_carlo;
+  EXPECT_LT(mc.p2_5, mc.p16);
+  EXPECT_LT(mc.p16, mc.p50);
+  EXPECT_LT(mc.p50, mc.p84);
+  EXPECT_LT(mc.p84, mc.p97_5);
+  // Averaging four lasers narrows the spread (thesis Table 1, FUM-all vs
+  // FUM-single).
+  for (const ItemResult& item : result.items) {
+    EXPECT_GT(item.monte_carlo.std_dev, 1.3 * mc.std_dev) << item.item.name;
+  }
+}
+
+TEST(EstimateImageScale, AcceptanceRules) {
+  Case c = MakeCase(ShotNoise(), 1.0, 5);
+  const RayCaster caster(c.model_mesh);
+  MonteCarloOptions options;
+  options.num_iterations = 50;
+  // One laser's calibration 1 degree off: its scale disagrees.
+  LaserSetup wrong = c.shot.calibration;
+  wrong.lasers[2].direction_in_cam =
+      (Eigen::AngleAxisd(M_PI / 180.0, Eigen::Vector3d::UnitY()) *
+       wrong.lasers[2].direction_in_cam)
+          .normalized();
+  ImageScaleResult result = EstimateImageScale(c.shot.image, 0, wrong, caster,
+                                               ScaleMethod::kFum, options);
+  EXPECT_FALSE(result.accepted);
+  EXPECT_NE(result.rejection.find("disagree"), std::string::npos)
+      << result.rejection;
+  // Only one spot left.
+  for (size_t l = 1; l < c.shot.image.spots.size(); ++l) {
+    c.shot.image.spots[l].reset();
+  }
+  result = EstimateImageScale(c.shot.image, 0, c.shot.calibration, caster,
+                              ScaleMethod::kFum, options);
+  EXPECT_FALSE(result.accepted);
+  EXPECT_NE(result.rejection.find("fewer than the 2 required"),
+            std::string::npos)
+      << result.rejection;
+  ASSERT_TRUE(result.nominal);  // the one laser still gives a scale
+  EXPECT_EQ(result.items[1].num_invalid, 50u);
+  EXPECT_NE(result.items[1].nominal.problem.find("has no spot"),
+            std::string::npos);
+}
+
+TEST(EstimateImageScale, ItemsWithoutAScaleSayWhyAndNeverGiveNaN) {
+  Case c = MakeCase(Noisy(), 1.0, 6);
+  const RayCaster caster(c.model_mesh);
+  MonteCarloOptions options;
+  options.num_iterations = 100;
+  c.shot.image.spots[0]->pixel = Eigen::Vector2d(-40.0, 100.0);
+  const ImageScaleResult result = EstimateImageScale(
+      c.shot.image, 0, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  EXPECT_FALSE(result.items[0].nominal.scale);
+  EXPECT_NE(result.items[0].nominal.problem.find("outside"), std::string::npos)
+      << result.items[0].nominal.problem;
+  EXPECT_EQ(result.items[0].monte_carlo.num_samples, 0u);
+  EXPECT_EQ(result.items[0].num_invalid, 100u);
+  for (const double sample : result.samples) EXPECT_TRUE(std::isfinite(sample));
+  ASSERT_TRUE(result.nominal);
+  EXPECT_TRUE(std::isfinite(*result.nominal));
+}
+
+TEST(MonteCarloOptions, CheckNamesTheField) {
+  MonteCarloOptions options;
+  options.num_iterations = 0;
+  EXPECT_THROW(options.Check(), Error);
+  options = MonteCarloOptions();
+  options.max_item_spread = 0.0;
+  EXPECT_THROW(options.Check(), Error);
+}
+
+}  // namespace
+}  // namespace uw
