@@ -5,28 +5,19 @@
 // JSON record for bench/results/.
 //
 //   laserscale_bench OUT.json
-#include <chrono>
 #include <cstdio>
 #include <string>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
+#include "bench/wall_clock.h"
 #include "colmap_plugins/util/file.h"
 #include "laserscale/laser_experiment.h"
+#include "sim/generate.h"
 #include "sim/laser.h"
 #include "sim/survey.h"
 #include "sim/world.h"
-
-namespace {
-
-double WallSeconds() {
-  return std::chrono::duration<double>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   if (argc != 2) {
@@ -37,18 +28,10 @@ int main(int argc, char** argv) {
   const sim::World world =
       sim::MakeWorld(sim::WorldKind::kVent, sim::WorldOptions(), 1);
   const RayCaster caster(world.mesh);
-  Camera camera;
-  camera.camera_id = 1;
-  camera.model_id = CameraModelId::kSimpleRadial;
-  camera.width = 1024;
-  camera.height = 768;
-  camera.params = {850.0, 512.0, 384.0, -0.04};
+  const Camera camera = sim::SimConfig::DefaultCamera();
   sim::SurveyOptions survey;
   survey.views_max_angle_deg = 0.0;
-  survey.views_target =
-      caster
-          .Intersect(Eigen::Vector3d(20.0, 3.0, 3.0), -Eigen::Vector3d::UnitX())
-          ->point_in_world;
+  survey.views_target = VentFlankTarget(caster);
   const auto stations =
       sim::PlanSurvey(sim::SurveyKind::kViews, world, camera, survey, 1);
   sim::LaserOptions laser_options;
@@ -68,10 +51,10 @@ int main(int argc, char** argv) {
   for (const unsigned threads : {1u, cores}) {
     MonteCarloOptions options;
     options.num_threads = static_cast<int>(threads);
-    const double start = WallSeconds();
+    const double start = uw::bench::WallSeconds();
     const ImageScaleResult result = EstimateImageScale(
         shot.image, 0, shot.calibration, caster, ScaleMethod::kFum, options);
-    const double wall = WallSeconds() - start;
+    const double wall = uw::bench::WallSeconds() - start;
     if (threads == 1) one_thread = wall;
     std::printf(
         "[laserscale_bench] %d iterations, %u thread(s): %.3f s (scale %.5f "

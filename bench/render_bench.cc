@@ -14,6 +14,7 @@
 #include <tbb/global_control.h>
 #include <nlohmann/json.hpp>
 
+#include "bench/wall_clock.h"
 #include "colmap_plugins/mesh/ray_caster.h"
 #include "colmap_plugins/util/file.h"
 #include "sim/generate.h"
@@ -24,12 +25,6 @@ double CpuSeconds() {
   timespec time;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &time);
   return static_cast<double>(time.tv_sec) + 1e-9 * time.tv_nsec;
-}
-
-double WallSeconds() {
-  return std::chrono::duration<double>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
 }
 
 }  // namespace
@@ -62,13 +57,13 @@ int main(int argc, char** argv) {
       const tbb::global_control limit(
           tbb::global_control::max_allowed_parallelism, threads);
       const double cpu_start = CpuSeconds();
-      const double wall_start = WallSeconds();
+      const double wall_start = uw::bench::WallSeconds();
       for (int i = 0; i < num_images; ++i) {
         renderer.Render(stations[i % stations.size()].cam_from_world,
                         config.seed, i);
       }
       const double cpu = CpuSeconds() - cpu_start;
-      const double wall = WallSeconds() - wall_start;
+      const double wall = uw::bench::WallSeconds() - wall_start;
       const double mpixels = num_images * pixels / 1e6;
       const nlohmann::json run = {
           {"supersampling", supersampling},

@@ -11,6 +11,7 @@
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/random.h"
 #include "laserscale/scale_estimators.h"
+#include "sim/generate.h"
 #include "sim/laser.h"
 #include "sim/survey.h"
 #include "sim/world.h"
@@ -117,6 +118,13 @@ void ShotOptions::Check() const {
   }
   noise.Check();
   localization.Check();
+}
+
+Eigen::Vector3d VentFlankTarget(const RayCaster& world_caster) {
+  const std::optional<RayCaster::Hit> hit = world_caster.Intersect(
+      Eigen::Vector3d(20.0, 3.0, 3.0), -Eigen::Vector3d::UnitX());
+  if (!hit) throw ErrorAt("views experiment: the world has no vent flank");
+  return hit->point_in_world;
 }
 
 TriangleMesh ScaledMesh(const TriangleMesh& mesh, double scale) {
@@ -230,20 +238,10 @@ std::vector<ViewsExperimentRow> RunViewsExperiment(
                                           sim::WorldOptions(), options.seed);
   const RayCaster world_caster(world.mesh);
   std::optional<Eigen::Vector3d> target = options.target;
-  if (options.area == "flank") {
-    const std::optional<RayCaster::Hit> hit = world_caster.Intersect(
-        Eigen::Vector3d(20.0, 3.0, 3.0), -Eigen::Vector3d::UnitX());
-    if (!hit) throw ErrorAt("views experiment: the vent has no flank");
-    target = hit->point_in_world;
-  }
+  if (options.area == "flank") target = VentFlankTarget(world_caster);
   const TriangleMesh model_mesh = ScaledMesh(world.mesh, options.model_scale);
   const RayCaster model_caster(model_mesh);
-  Camera camera;
-  camera.camera_id = 1;
-  camera.model_id = CameraModelId::kSimpleRadial;
-  camera.width = 1024;
-  camera.height = 768;
-  camera.params = {850.0, 512.0, 384.0, -0.04};
+  const Camera camera = sim::SimConfig::DefaultCamera();
 
   const int half =
       static_cast<int>(std::round(options.max_angle_deg / options.step_deg));

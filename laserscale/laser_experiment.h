@@ -67,6 +67,11 @@ SyntheticShot MakeSyntheticShot(const RayCaster& world_caster,
                                 const LaserSetup& truth,
                                 const ShotOptions& options, uint64_t seed);
 
+// The vent's rough flank (the views experiment's default "flank" area): the
+// first surface met from (20, 3, 3) m looking along -x. Throws uw::Error if
+// the world has no surface there.
+Eigen::Vector3d VentFlankTarget(const RayCaster& world_caster);
+
 // A mesh times `scale` (the model of a world).
 TriangleMesh ScaledMesh(const TriangleMesh& mesh, double scale);
 

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "sim/generate.h"
 #include "sim/laser.h"
 #include "sim/survey.h"
 #include "sim/world.h"
@@ -170,19 +171,11 @@ TEST(ViewsExperiment, NoiseGrowsWithDistanceAndSpotNoiseNotFeatureNoise) {
 TEST(CoverageExperiment, MonteCarloSigmaMatchesTheSpreadOfTrials) {
   const sim::World world =
       sim::MakeWorld(sim::WorldKind::kVent, sim::WorldOptions(), 1);
-  Camera camera;
-  camera.camera_id = 1;
-  camera.model_id = CameraModelId::kSimpleRadial;
-  camera.width = 1024;
-  camera.height = 768;
-  camera.params = {850.0, 512.0, 384.0, -0.04};
+  const Camera camera = sim::SimConfig::DefaultCamera();
   const RayCaster caster(world.mesh);
   sim::SurveyOptions survey;
   survey.views_max_angle_deg = 0.0;
-  survey.views_target =
-      caster
-          .Intersect(Eigen::Vector3d(20.0, 3.0, 3.0), -Eigen::Vector3d::UnitX())
-          ->point_in_world;
+  survey.views_target = VentFlankTarget(caster);
   const auto stations =
       sim::PlanSurvey(sim::SurveyKind::kViews, world, camera, survey, 1);
   ASSERT_EQ(stations.size(), 1u);

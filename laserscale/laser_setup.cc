@@ -123,26 +123,14 @@ std::string LasersJsonText(const std::vector<LaserSetup>& setups) {
 
 std::vector<LaserSetup> ParseLasersJson(const std::string& text,
                                         const std::string& where) {
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw ErrorAt(where, ": ", error.what());
-  }
+  const nlohmann::json json = ParseJsonText(text, where);
   JsonFields file(json, where);
-  std::string format;
-  int version = 0;
+  file.RequireFormat(kFormat, kVersion);
   std::string frame;
   nlohmann::json json_setups;
-  file.Require("format", &format);
-  file.Require("version", &version);
   file.Read("frame", &frame);
   file.Require("setups", &json_setups);
   file.RejectUnknown();
-  if (format != kFormat || version != kVersion) {
-    throw ErrorAt(where, ": expected format \"", kFormat, "\" version ",
-                  kVersion, ", got \"", format, "\" version ", version);
-  }
   if (!json_setups.is_array() || json_setups.empty()) {
     throw ErrorAt(where, ": \"setups\" must be a non-empty array");
   }

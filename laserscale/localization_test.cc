@@ -6,18 +6,12 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
+#include "sim/generate.h"
+
 namespace uw {
 namespace {
 
-Camera TestCamera() {
-  Camera camera;
-  camera.camera_id = 1;
-  camera.model_id = CameraModelId::kSimpleRadial;
-  camera.width = 1024;
-  camera.height = 768;
-  camera.params = {850.0, 512.0, 384.0, -0.04};
-  return camera;
-}
+Camera TestCamera() { return sim::SimConfig::DefaultCamera(); }
 
 Rigid3d TestPose() {
   Rigid3d cam_from_world;

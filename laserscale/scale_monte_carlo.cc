@@ -55,35 +55,51 @@ double Percentile(const std::vector<double>& sorted, double p) {
 }
 
 std::string Acceptance(const LaserImage& image,
-                       const std::vector<ItemScale>& nominal,
+                       const std::vector<ItemResult>& items,
                        const MonteCarloOptions& options) {
-  const int num_lasers = static_cast<int>(
+  // Lasers that give a scale: detected, and their ray meets the surface.
+  std::vector<bool> measuring(image.spots.size(), false);
+  for (const ItemResult& item : items) {
+    if (!item.nominal.scale) continue;
+    for (const int laser : item.item.lasers) measuring[laser] = true;
+  }
+  const int num_detected = static_cast<int>(
       std::count_if(image.spots.begin(), image.spots.end(),
                     [](const std::optional<Spot>& spot) { return spot; }));
-  if (num_lasers < options.min_lasers) {
+  const int num_measuring =
+      static_cast<int>(std::count(measuring.begin(), measuring.end(), true));
+  if (num_measuring < options.min_lasers) {
     std::ostringstream message;
-    message << num_lasers << " laser(s) detected, fewer than the "
-            << options.min_lasers << " required";
+    message << num_measuring << " laser(s) give a scale (" << num_detected
+            << " detected), fewer than the " << options.min_lasers
+            << " required";
     return message.str();
   }
   std::vector<double> scales;
-  for (const ItemScale& item : nominal) {
-    if (item.scale) scales.push_back(*item.scale);
+  for (const ItemResult& item : items) {
+    if (item.nominal.scale) scales.push_back(*item.nominal.scale);
   }
-  if (scales.empty()) return "no item has a scale";
-  std::vector<double> sorted = scales;
-  std::sort(sorted.begin(), sorted.end());
-  const double median = Percentile(sorted, 0.5);
-  double spread = 0.0;
-  for (const double scale : scales) {
-    spread = std::max(spread, std::abs(scale / median - 1.0));
-  }
-  if (spread > options.max_item_spread) {
-    std::ostringstream message;
-    message << "the items' scales disagree: one is " << 100.0 * spread
-            << " % from their median (max " << 100.0 * options.max_item_spread
-            << " %); a calibration error?";
-    return message.str();
+  std::sort(scales.begin(), scales.end());
+  const double median = Percentile(scales, 0.5);
+  // Items disagree when one lies further from the median than its own
+  // Monte Carlo spread allows (spots, calibration); without any spread
+  // (noise-free inputs) any disagreement beyond rounding counts.
+  for (const ItemResult& item : items) {
+    if (!item.nominal.scale) continue;
+    const double deviation = std::abs(*item.nominal.scale - median);
+    const double allowed = std::max(
+        options.max_item_sigmas * item.monte_carlo.std_dev, 1e-9 * median);
+    if (deviation > allowed) {
+      std::ostringstream message;
+      message << "the items' scales disagree: " << item.item.name << " is "
+              << 100.0 * deviation / median << " % from their median, "
+              << (item.monte_carlo.std_dev > 0.0
+                      ? deviation / item.monte_carlo.std_dev
+                      : INFINITY)
+              << " of its sigmas (max " << options.max_item_sigmas
+              << "); a calibration error?";
+      return message.str();
+    }
   }
   return "";
 }
@@ -102,9 +118,9 @@ void MonteCarloOptions::Check() const {
     throw ErrorAt("Monte Carlo: convergence_every must be >= 1");
   }
   if (min_lasers < 1) throw ErrorAt("Monte Carlo: min_lasers must be >= 1");
-  if (!(max_item_spread > 0.0)) {
-    throw ErrorAt("Monte Carlo: max_item_spread must be > 0, got ",
-                  max_item_spread);
+  if (!(max_item_sigmas > 0.0)) {
+    throw ErrorAt("Monte Carlo: max_item_sigmas must be > 0, got ",
+                  max_item_sigmas);
   }
 }
 
@@ -165,8 +181,6 @@ ImageScaleResult EstimateImageScale(const LaserImage& image, int image_index,
   }
   const double nominal_image = MeanOfValid(nominal_values.data(), num_items);
   if (!std::isnan(nominal_image)) result.nominal = nominal_image;
-  result.rejection = Acceptance(image, nominal, options);
-  result.accepted = result.rejection.empty();
 
   // Factors of every sampled covariance, computed once.
   std::vector<Eigen::Matrix3d> direction_factors;
@@ -191,6 +205,8 @@ ImageScaleResult EstimateImageScale(const LaserImage& image, int image_index,
   const uint64_t image_key =
       SplitMix64(SplitMix64(options.seed) ^
                  SplitMix64(static_cast<uint64_t>(image_index)));
+  const uint64_t calibration_key =
+      SplitMix64(SplitMix64(options.seed) ^ 0xCA1Bull);
   const bool sample_features =
       options.sample_features && image.feature_sigma_px > 0.0;
   std::optional<LinearizedPose> linearized;
@@ -204,6 +220,8 @@ ImageScaleResult EstimateImageScale(const LaserImage& image, int image_index,
     SpotPixels spots(lasers.size());
     for (int n = range.begin(); n != range.end(); ++n) {
       SplitMix64Stream rng(SplitMix64(image_key + static_cast<uint64_t>(n)));
+      SplitMix64Stream calibration_rng(
+          SplitMix64(calibration_key + static_cast<uint64_t>(n)));
       Rigid3d cam_from_world = image.cam_from_world;
       bool localized = true;
       if (sample_features) {
@@ -231,11 +249,11 @@ ImageScaleResult EstimateImageScale(const LaserImage& image, int image_index,
         if (options.sample_calibration) {
           sampled_lasers[l].direction_in_cam =
               (lasers[l].direction_in_cam +
-               direction_factors[l] * StandardNormal3(&rng))
+               direction_factors[l] * StandardNormal3(&calibration_rng))
                   .normalized();
           sampled_lasers[l].origin_in_cam =
               lasers[l].origin_in_cam +
-              origin_factors[l] * StandardNormal3(&rng);
+              origin_factors[l] * StandardNormal3(&calibration_rng);
         }
       }
       const size_t offset = static_cast<size_t>(n) * num_items;
@@ -283,6 +301,7 @@ ImageScaleResult EstimateImageScale(const LaserImage& image, int image_index,
   for (int n = 0; n < num_iterations; ++n) {
     const double scale = MeanOfValid(
         item_samples.data() + static_cast<size_t>(n) * num_items, num_items);
+    result.per_iteration.push_back(scale);
     if (!std::isnan(scale)) {
       result.samples.push_back(scale);
       sum += scale;
@@ -299,6 +318,8 @@ ImageScaleResult EstimateImageScale(const LaserImage& image, int image_index,
     }
   }
   result.monte_carlo = Summarize(result.samples);
+  result.rejection = Acceptance(image, result.items, options);
+  result.accepted = result.rejection.empty();
   return result;
 }
 

@@ -10,8 +10,13 @@
 // distribution in between is approximated: the spread of the scales is the
 // uncertainty.
 //
-// Iteration n of image i draws from SplitMix64 keyed by (seed, i, n), so a
-// result is identical for any thread count and any split of the work.
+// Iteration n of image i draws features and spots from SplitMix64 keyed by
+// (seed, i, n), so a result is identical for any thread count and any split
+// of the work. The calibration is drawn keyed by (seed, n) alone: every
+// image sees the same calibration in iteration n, as every image of a
+// survey shares the one calibration, so that combining images iteration by
+// iteration (scale_report.h) keeps its error correlated instead of
+// averaging it away.
 //
 // Scales are s = m / m̂ (multiply the model by s to get metres); the scale
 // error of a model meant to be metric is s - 1.
@@ -66,12 +71,14 @@ struct MonteCarloOptions {
   // The running mean and σ of the image's scale are recorded every this
   // many iterations (ch4 spec §4.3, the thesis's Fig. 19).
   int convergence_every = 50;
-  // Acceptance (ch4 spec §4.5): at least this many detected lasers, and no
-  // item's nominal scale further than max_item_spread (relative) from the
-  // items' median (the scale is locally constant; a larger spread betrays
-  // a calibration error).
+  // Acceptance (ch4 spec §4.5): at least this many lasers giving a scale
+  // (detected, and their rays meeting the surface), and no item's nominal
+  // scale further from the items' median than max_item_sigmas of its own
+  // Monte Carlo σ (the scale is locally constant; a larger disagreement
+  // than the spots and the calibration's stated uncertainty explain
+  // betrays a calibration error [L2672]).
   int min_lasers = 2;
-  double max_item_spread = 0.02;
+  double max_item_sigmas = 3.0;
   // Threads (<= 0: all cores). The result does not depend on it.
   int num_threads = 0;
 
@@ -110,7 +117,8 @@ struct ImageScaleResult {
   // (so the shared pose's correlation is kept, ch4 spec §4.4).
   std::optional<double> nominal;
   SampleSummary monte_carlo;
-  std::vector<double> samples;
+  std::vector<double> samples;        // valid ones, in iteration order
+  std::vector<double> per_iteration;  // one per iteration; NaN: none
   std::vector<ConvergencePoint> convergence;
   bool accepted = false;
   std::string rejection;  // why not accepted

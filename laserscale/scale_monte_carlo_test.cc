@@ -9,18 +9,12 @@
 #include "laserscale/laser_experiment.h"
 #include "sim/laser.h"
 
+#include "sim/generate.h"
+
 namespace uw {
 namespace {
 
-Camera TestCamera() {
-  Camera camera;
-  camera.camera_id = 1;
-  camera.model_id = CameraModelId::kSimpleRadial;
-  camera.width = 1024;
-  camera.height = 768;
-  camera.params = {850.0, 512.0, 384.0, -0.04};
-  return camera;
-}
+Camera TestCamera() { return sim::SimConfig::DefaultCamera(); }
 
 // A wall 3 m in front of the camera, tilted 20 degrees, with a 10 cm step
 // (relief) across its middle; the world frame is the camera's turned and
@@ -193,6 +187,26 @@ TEST(EstimateImageScale, AcceptanceRules) {
   EXPECT_FALSE(result.accepted);
   EXPECT_NE(result.rejection.find("disagree"), std::string::npos)
       << result.rejection;
+  // With the calibration's stated uncertainty (0.05 deg, 1 mm) a laser
+  // 1 degree off is still far beyond it; the same image with its true
+  // calibration error only is accepted.
+  Case noisy = MakeCase(Noisy(), 1.0, 8);
+  const RayCaster noisy_caster(noisy.model_mesh);
+  options.num_iterations = 500;
+  result = EstimateImageScale(noisy.shot.image, 0, noisy.shot.calibration,
+                              noisy_caster, ScaleMethod::kFum, options);
+  EXPECT_TRUE(result.accepted) << result.rejection;
+  LaserSetup noisy_wrong = noisy.shot.calibration;
+  noisy_wrong.lasers[1].direction_in_cam =
+      (Eigen::AngleAxisd(M_PI / 180.0, Eigen::Vector3d::UnitX()) *
+       noisy_wrong.lasers[1].direction_in_cam)
+          .normalized();
+  result = EstimateImageScale(noisy.shot.image, 0, noisy_wrong, noisy_caster,
+                              ScaleMethod::kFum, options);
+  EXPECT_FALSE(result.accepted);
+  EXPECT_NE(result.rejection.find("L1 is"), std::string::npos)
+      << result.rejection;
+  options.num_iterations = 50;
   // Only one spot left.
   for (size_t l = 1; l < c.shot.image.spots.size(); ++l) {
     c.shot.image.spots[l].reset();
@@ -200,7 +214,8 @@ TEST(EstimateImageScale, AcceptanceRules) {
   result = EstimateImageScale(c.shot.image, 0, c.shot.calibration, caster,
                               ScaleMethod::kFum, options);
   EXPECT_FALSE(result.accepted);
-  EXPECT_NE(result.rejection.find("fewer than the 2 required"),
+  EXPECT_NE(result.rejection.find("1 laser(s) give a scale (1 detected), "
+                                  "fewer than the 2 required"),
             std::string::npos)
       << result.rejection;
   ASSERT_TRUE(result.nominal);  // the one laser still gives a scale
@@ -225,6 +240,26 @@ TEST(EstimateImageScale, ItemsWithoutAScaleSayWhyAndNeverGiveNaN) {
   for (const double sample : result.samples) EXPECT_TRUE(std::isfinite(sample));
   ASSERT_TRUE(result.nominal);
   EXPECT_TRUE(std::isfinite(*result.nominal));
+  // Three of four lasers still measure: accepted.
+  EXPECT_TRUE(result.accepted) << result.rejection;
+}
+
+// Detected spots whose rays miss the surface do not count towards the two
+// lasers an image needs.
+TEST(EstimateImageScale, SpotsMissingTheSurfaceDoNotCount) {
+  Case c = MakeCase(ShotNoise(), 1.0, 7);
+  const RayCaster caster(c.model_mesh);
+  MonteCarloOptions options;
+  options.num_iterations = 20;
+  for (size_t l = 1; l < c.shot.image.spots.size(); ++l) {
+    c.shot.image.spots[l]->pixel = Eigen::Vector2d(-5.0, -5.0);
+  }
+  const ImageScaleResult result = EstimateImageScale(
+      c.shot.image, 0, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  EXPECT_FALSE(result.accepted);
+  EXPECT_NE(result.rejection.find("1 laser(s) give a scale (4 detected)"),
+            std::string::npos)
+      << result.rejection;
 }
 
 TEST(MonteCarloOptions, CheckNamesTheField) {
@@ -232,7 +267,7 @@ TEST(MonteCarloOptions, CheckNamesTheField) {
   options.num_iterations = 0;
   EXPECT_THROW(options.Check(), Error);
   options = MonteCarloOptions();
-  options.max_item_spread = 0.0;
+  options.max_item_sigmas = 0.0;
   EXPECT_THROW(options.Check(), Error);
 }
 

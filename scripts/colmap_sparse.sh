@@ -19,26 +19,16 @@ if [[ -e "$out/database.db" || -e "$out/sparse" ]]; then
   exit 1
 fi
 mkdir -p "$out/logs" "$out/sparse"
-run() {  # run NAME COMMAND...: time a step, keep its log, show it on failure
-  local name=$1
-  shift
-  local start=$SECONDS
-  if ! "$@" > "$out/logs/$name.log" 2>&1; then
-    cat "$out/logs/$name.log"
-    echo "colmap_sparse: step '$name' failed" >&2
-    exit 1
-  fi
-  echo "[colmap] $name: $((SECONDS - start)) s"
-}
+source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/run_step.sh"
 
 camera=(--ImageReader.single_camera 1 --ImageReader.camera_model "$model")
 if [[ -n "$params" ]]; then camera+=(--ImageReader.camera_params "$params"); fi
-run feature_extractor colmap feature_extractor \
+run_step "$out/logs" feature_extractor colmap feature_extractor \
   --database_path "$out/database.db" --image_path "$images" "${camera[@]}" \
   --SiftExtraction.use_gpu 0 --SiftExtraction.max_num_features 2000 \
   --SiftExtraction.first_octave 0
-run exhaustive_matcher colmap exhaustive_matcher \
+run_step "$out/logs" exhaustive_matcher colmap exhaustive_matcher \
   --database_path "$out/database.db" --SiftMatching.use_gpu 0
-run mapper colmap mapper --database_path "$out/database.db" \
+run_step "$out/logs" mapper colmap mapper --database_path "$out/database.db" \
   --image_path "$images" --output_path "$out/sparse"
 test -f "$out/sparse/0/images.bin"

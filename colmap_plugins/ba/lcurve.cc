@@ -11,6 +11,7 @@
 
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
+#include "colmap_plugins/util/plot.h"
 
 namespace uw {
 
@@ -358,17 +359,7 @@ void WriteLCurvePlot(const LCurve& curve, const std::filesystem::path& path) {
           << ")";
     text(label.str(), {kMargin, kPlotHeight + 15});
   }
-  std::vector<uchar> bytes;
-  if (!cv::imencode(".png", image, bytes)) {
-    throw ErrorAt("cannot encode the L-curve plot ", path.string());
-  }
-  WriteFilesAtomically({{path,
-                         [&](std::ostream& out) {
-                           out.write(
-                               reinterpret_cast<const char*>(bytes.data()),
-                               static_cast<std::streamsize>(bytes.size()));
-                         }}},
-                       true);
+  WritePngAtomically(image, path);
 }
 
 }  // namespace uw

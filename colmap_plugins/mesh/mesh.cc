@@ -1,6 +1,9 @@
 #include "colmap_plugins/mesh/mesh.h"
 
 #include <cctype>
+#include <sstream>
+
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -628,6 +631,62 @@ TriangleMesh ReadPly(const std::filesystem::path& path) {
   const Layout layout = FindLayout(header, source);
   return header.binary ? ReadBinary(data, header, layout, source)
                        : ReadAscii(data, header, layout, source);
+}
+
+TriangleMesh ReadObj(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  std::istringstream in(ReadFileToString(path));
+  TriangleMesh mesh;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    std::istringstream fields(line);
+    std::string keyword;
+    if (!(fields >> keyword) || keyword[0] == '#') continue;
+    if (keyword == "v") {
+      Eigen::Vector3d vertex;
+      if (!(fields >> vertex.x() >> vertex.y() >> vertex.z()) ||
+          !vertex.allFinite()) {
+        throw ErrorAt(source, ":", number, ": a vertex needs 3 finite numbers");
+      }
+      mesh.vertices.push_back(vertex);
+    } else if (keyword == "f") {
+      std::vector<int> corners;
+      std::string corner;
+      while (fields >> corner) {
+        int index = 0;
+        try {
+          size_t used = 0;
+          index = std::stoi(corner, &used);
+          if (used < corner.size() && corner[used] != '/') throw 0;
+        } catch (...) {
+          throw ErrorAt(source, ":", number, ": bad face index '", corner, "'");
+        }
+        const int count = static_cast<int>(mesh.vertices.size());
+        const int resolved = index > 0 ? index - 1 : count + index;
+        if (index == 0 || resolved < 0 || resolved >= count) {
+          throw ErrorAt(source, ":", number, ": face index ", index,
+                        " out of range (", count, " vertices so far)");
+        }
+        corners.push_back(resolved);
+      }
+      if (corners.size() < 3) {
+        throw ErrorAt(source, ":", number, ": a face needs >= 3 vertices");
+      }
+      for (size_t k = 1; k + 1 < corners.size(); ++k) {
+        mesh.triangles.emplace_back(corners[0], corners[k], corners[k + 1]);
+      }
+    }
+  }
+  if (mesh.triangles.empty()) throw ErrorAt(source, ": no faces");
+  return mesh;
+}
+
+TriangleMesh ReadMesh(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(c));
+  if (extension == ".ply") return ReadPly(path);
+  if (extension == ".obj") return ReadObj(path);
+  throw ErrorAt(path.string(), ": unknown mesh format (expected .ply or .obj)");
 }
 
 }  // namespace uw

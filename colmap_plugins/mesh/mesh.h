@@ -27,4 +27,13 @@ void WritePly(const TriangleMesh& mesh, const std::filesystem::path& path);
 // vertices and triangle faces; throws uw::Error naming the file otherwise.
 TriangleMesh ReadPly(const std::filesystem::path& path);
 
+// Wavefront OBJ: "v x y z" vertices and "f" faces (indices 1-based or
+// negative, with or without /texture/normal parts; polygons are fanned into
+// triangles); other statements are ignored. Throws uw::Error naming the
+// file and line of anything malformed.
+TriangleMesh ReadObj(const std::filesystem::path& path);
+
+// ReadPly or ReadObj by the file's extension (.ply, .obj; any case).
+TriangleMesh ReadMesh(const std::filesystem::path& path);
+
 }  // namespace uw

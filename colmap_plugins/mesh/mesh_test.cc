@@ -300,5 +300,34 @@ TEST_F(MeshTest, WriteRefusesMeshesItCouldNotReadBack) {
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
+TEST_F(MeshTest, ReadsObjWithPolygonsAndSlashedIndices) {
+  const std::filesystem::path path =
+      Write("quad.obj",
+            "# a unit square and a triangle by negative indices\n"
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n"
+            "f 1//1 2//1 3//1 4//1\nv 0 0 1\nf -1 1 2\n");
+  const TriangleMesh mesh = ReadMesh(path);
+  ASSERT_EQ(mesh.vertices.size(), 5u);
+  ASSERT_EQ(mesh.triangles.size(), 3u);
+  EXPECT_EQ(mesh.triangles[0], Eigen::Vector3i(0, 1, 2));
+  EXPECT_EQ(mesh.triangles[1], Eigen::Vector3i(0, 2, 3));
+  EXPECT_EQ(mesh.triangles[2], Eigen::Vector3i(4, 0, 1));
+  for (const auto& [name, text, words] :
+       std::vector<std::array<std::string, 3>>{
+           {"bad1.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n", "bad1.obj:3"},
+           {"bad2.obj", "v 0 0\n", "bad2.obj:1"},
+           {"bad3.obj", "v 0 0 0\n", "no faces"},
+           {"bad4.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 x 3\n", "bad face"}}) {
+    try {
+      ReadObj(Write(name, text));
+      ADD_FAILURE() << name;
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find(words), std::string::npos)
+          << error.what();
+    }
+  }
+  EXPECT_THROW(ReadMesh(Write("mesh.stl", "solid")), Error);
+}
+
 }  // namespace
 }  // namespace uw

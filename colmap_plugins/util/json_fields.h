@@ -27,6 +27,16 @@ inline nlohmann::json ToJson(const Eigen::Matrix3d& value) {
   return rows;
 }
 
+// Parses a file's text; a syntax error names `where` and the position.
+inline nlohmann::json ParseJsonText(const std::string& text,
+                                    const std::string& where) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& error) {
+    throw ErrorAt(where, ": ", error.what());
+  }
+}
+
 // Reads the keys of one options object and rejects the rest, naming them.
 class JsonFields {
  public:
@@ -75,6 +85,19 @@ class JsonFields {
       throw ErrorAt(what_, ": missing key \"", key, "\"");
     }
     Read(key, value);
+  }
+
+  // A uwmetric file's "format" and "version": both required and ours.
+  void RequireFormat(const std::string& format, int version) {
+    std::string read_format;
+    int read_version = 0;
+    Require("format", &read_format);
+    Require("version", &read_version);
+    if (read_format != format || read_version != version) {
+      throw ErrorAt(what_, ": expected format \"", format, "\" version ",
+                    version, ", got \"", read_format, "\" version ",
+                    read_version);
+    }
   }
 
   void RejectUnknown() const {

@@ -1,0 +1,167 @@
+#include "laserscale/laser_poses_io.h"
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/file.h"
+#include "colmap_plugins/util/json_fields.h"
+
+namespace uw {
+namespace {
+
+constexpr char kFormat[] = "uwmetric-laser-poses";
+constexpr int kVersion = 1;
+
+template <typename T>
+void CheckFinite(const T& values, const std::string& where) {
+  for (const double value : values) {
+    if (!std::isfinite(value)) throw ErrorAt(where, ": not finite");
+  }
+}
+
+}  // namespace
+
+std::string LaserPosesJsonText(const std::vector<LocalizedImage>& images) {
+  nlohmann::json json_images = nlohmann::json::array();
+  for (const LocalizedImage& image : images) {
+    nlohmann::json entry = {
+        {"name", image.name},
+        {"success", image.success},
+        {"problem", image.problem},
+        {"camera",
+         {{"camera_id", image.camera.camera_id},
+          {"model", image.camera.ModelName()},
+          {"width", image.camera.width},
+          {"height", image.camera.height},
+          {"params", image.camera.params}}},
+        {"num_matches", image.num_matches},
+        {"num_matched_model_images", image.num_matched_model_images}};
+    if (image.success) {
+      const Eigen::Quaterniond& q = image.cam_from_world.rotation;
+      entry["cam_from_world"] = {
+          {"rotation_wxyz", {q.w(), q.x(), q.y(), q.z()}},
+          {"translation", ToJson(image.cam_from_world.translation)}};
+      entry["rms_error_px"] = image.rms_error_px;
+      nlohmann::json inliers = nlohmann::json::array();
+      for (const Correspondence2D3D& match : image.inliers) {
+        inliers.push_back({match.pixel.x(), match.pixel.y(),
+                           match.point_in_world.x(), match.point_in_world.y(),
+                           match.point_in_world.z()});
+      }
+      entry["inliers"] = inliers;
+    }
+    json_images.push_back(entry);
+  }
+  const nlohmann::json json = {
+      {"format", kFormat},
+      {"version", kVersion},
+      {"inliers", "[x, y, X, Y, Z]: COLMAP pixel, model point"},
+      {"images", json_images}};
+  return json.dump(1) + "\n";
+}
+
+std::vector<LocalizedImage> ParseLaserPosesJson(const std::string& text,
+                                                const std::string& where) {
+  const nlohmann::json json = ParseJsonText(text, where);
+  JsonFields file(json, where);
+  file.RequireFormat(kFormat, kVersion);
+  std::string inliers_doc;
+  nlohmann::json json_images;
+  file.Read("inliers", &inliers_doc);
+  file.Require("images", &json_images);
+  file.RejectUnknown();
+  if (!json_images.is_array()) {
+    throw ErrorAt(where, ": \"images\" must be an array");
+  }
+  std::vector<LocalizedImage> images;
+  for (size_t i = 0; i < json_images.size(); ++i) {
+    LocalizedImage image;
+    const std::string image_where =
+        where + ": images[" + std::to_string(i) + "]";
+    JsonFields fields(json_images[i], image_where);
+    fields.Require("name", &image.name);
+    const std::string named = where + ": image '" + image.name + "'";
+    nlohmann::json camera;
+    nlohmann::json pose;
+    nlohmann::json inliers;
+    fields.Require("success", &image.success);
+    fields.Read("problem", &image.problem);
+    fields.Require("camera", &camera);
+    fields.Read("num_matches", &image.num_matches);
+    fields.Read("num_matched_model_images", &image.num_matched_model_images);
+    fields.Read("cam_from_world", &pose);
+    fields.Read("rms_error_px", &image.rms_error_px);
+    fields.Read("inliers", &inliers);
+    fields.RejectUnknown();
+
+    JsonFields camera_fields(camera, named + ": camera");
+    std::string model;
+    camera_fields.Require("camera_id", &image.camera.camera_id);
+    camera_fields.Require("model", &model);
+    camera_fields.Require("width", &image.camera.width);
+    camera_fields.Require("height", &image.camera.height);
+    camera_fields.Require("params", &image.camera.params);
+    camera_fields.RejectUnknown();
+    image.camera.model_id = CameraModelNameToId(model);
+    if (image.camera.model_id == CameraModelId::kInvalid) {
+      throw ErrorAt(named, ": unknown camera model '", model, "'");
+    }
+    try {
+      CheckCameraModelParams(image.camera.model_id, image.camera.params.size());
+    } catch (const Error& error) {
+      throw ErrorAt(named, ": ", error.what());
+    }
+    CheckFinite(image.camera.params, named + ": camera params");
+
+    if (image.success) {
+      JsonFields pose_fields(pose, named + ": cam_from_world");
+      std::vector<double> rotation;
+      Eigen::Vector3d translation;
+      pose_fields.Require("rotation_wxyz", &rotation);
+      pose_fields.Require("translation", &translation);
+      pose_fields.RejectUnknown();
+      if (rotation.size() != 4) {
+        throw ErrorAt(named, ": rotation_wxyz must have 4 numbers");
+      }
+      CheckFinite(rotation, named + ": rotation_wxyz");
+      CheckFinite(translation, named + ": translation");
+      image.cam_from_world.rotation = Eigen::Quaterniond(
+          rotation[0], rotation[1], rotation[2], rotation[3]);
+      if (std::abs(image.cam_from_world.rotation.norm() - 1.0) > 1e-6) {
+        throw ErrorAt(named, ": rotation_wxyz is not a unit quaternion");
+      }
+      image.cam_from_world.translation = translation;
+      if (!inliers.is_array()) {
+        throw ErrorAt(named, ": a localized image needs its \"inliers\"");
+      }
+      for (size_t k = 0; k < inliers.size(); ++k) {
+        std::vector<double> row;
+        try {
+          inliers[k].get_to(row);
+        } catch (const nlohmann::json::exception& error) {
+          throw ErrorAt(named, ": inliers[", k, "]: ", error.what());
+        }
+        if (row.size() != 5) {
+          throw ErrorAt(named, ": inliers[", k, "] must be [x, y, X, Y, Z]");
+        }
+        CheckFinite(row, named + ": inliers[" + std::to_string(k) + "]");
+        image.inliers.push_back({Eigen::Vector2d(row[0], row[1]),
+                                 Eigen::Vector3d(row[2], row[3], row[4])});
+      }
+      if (!(image.rms_error_px >= 0.0) || !std::isfinite(image.rms_error_px)) {
+        throw ErrorAt(named, ": rms_error_px must be finite and >= 0");
+      }
+    }
+    images.push_back(std::move(image));
+  }
+  return images;
+}
+
+std::vector<LocalizedImage> ReadLaserPosesJson(
+    const std::filesystem::path& path) {
+  return ParseLaserPosesJson(ReadFileToString(path), path.string());
+}
+
+}  // namespace uw

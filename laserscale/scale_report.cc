@@ -1,0 +1,454 @@
+#include "laserscale/scale_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/file.h"
+#include "colmap_plugins/util/json_fields.h"
+#include "colmap_plugins/util/plot.h"
+
+namespace uw {
+namespace {
+
+constexpr char kFormat[] = "uwmetric-laser-scale";
+constexpr int kVersion = 1;
+
+CombinedScale Combine(const std::vector<ImageEstimate>& images,
+                      const std::vector<size_t>& members) {
+  CombinedScale combined;
+  combined.images = members;
+  if (members.empty()) return combined;
+  // Inverse-variance weights; equal weights when an image has no spread
+  // (noise-free inputs), where every image is equally exact.
+  std::vector<double> weights;
+  bool all_spread = true;
+  for (const size_t i : members) {
+    all_spread = all_spread && images[i].result->monte_carlo.std_dev > 0.0;
+  }
+  for (const size_t i : members) {
+    const double sigma = images[i].result->monte_carlo.std_dev;
+    weights.push_back(all_spread ? 1.0 / (sigma * sigma) : 1.0);
+  }
+  double weight_sum = 0.0;
+  double nominal = 0.0;
+  for (size_t k = 0; k < members.size(); ++k) {
+    nominal += weights[k] * *images[members[k]].result->nominal;
+    weight_sum += weights[k];
+  }
+  nominal /= weight_sum;
+  combined.nominal = nominal;
+  const size_t num_iterations = images[members[0]].result->per_iteration.size();
+  for (size_t n = 0; n < num_iterations; ++n) {
+    double sum = 0.0;
+    double used = 0.0;
+    for (size_t k = 0; k < members.size(); ++k) {
+      const double s = images[members[k]].result->per_iteration[n];
+      if (std::isnan(s)) continue;
+      sum += weights[k] * s;
+      used += weights[k];
+    }
+    combined.per_iteration.push_back(used > 0.0 ? sum / used : std::nan(""));
+  }
+  combined.monte_carlo = Summarize(combined.per_iteration);
+  if (members.size() >= 2 && all_spread) {
+    double chi2 = 0.0;
+    for (size_t k = 0; k < members.size(); ++k) {
+      const double d = *images[members[k]].result->nominal - nominal;
+      chi2 += weights[k] * d * d;
+    }
+    combined.birge_ratio = std::sqrt(chi2 / (members.size() - 1.0));
+  }
+  const double widen = std::max(1.0, combined.birge_ratio);
+  const SampleSummary& mc = combined.monte_carlo;
+  combined.sigma = widen * mc.std_dev;
+  combined.ci95_low = nominal - widen * (mc.p50 - mc.p2_5);
+  combined.ci95_high = nominal + widen * (mc.p97_5 - mc.p50);
+  return combined;
+}
+
+nlohmann::json SummaryJson(const SampleSummary& s) {
+  return {{"num_samples", s.num_samples},
+          {"mean", s.mean},
+          {"std", s.std_dev},
+          {"p2_5", s.p2_5},
+          {"p16", s.p16},
+          {"p50", s.p50},
+          {"p84", s.p84},
+          {"p97_5", s.p97_5}};
+}
+
+nlohmann::json CombinedJson(const CombinedScale& c,
+                            const std::vector<ImageEstimate>& images) {
+  nlohmann::json names = nlohmann::json::array();
+  for (const size_t i : c.images) names.push_back(images[i].name);
+  return {{"scale", c.nominal ? nlohmann::json(*c.nominal) : nlohmann::json()},
+          {"sigma", c.sigma},
+          {"ci95", {c.ci95_low, c.ci95_high}},
+          {"birge_ratio", c.birge_ratio},
+          {"monte_carlo", SummaryJson(c.monte_carlo)},
+          {"images", names}};
+}
+
+std::string Percent(double scale) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%+.3f %%", 100.0 * (scale - 1.0));
+  return text;
+}
+
+std::string Fixed(double value, int digits = 5) {
+  char text[40];
+  std::snprintf(text, sizeof(text), "%.*f", digits, value);
+  return text;
+}
+
+// mean, std, p2.5, p97.5; empty fields without samples.
+std::string SummaryCsv(const SampleSummary& s) {
+  if (s.num_samples == 0) return ",,,";
+  return Fixed(s.mean, 7) + "," + Fixed(s.std_dev, 7) + "," + Fixed(s.p2_5, 7) +
+         "," + Fixed(s.p97_5, 7);
+}
+
+std::string Html(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+// A CSV field: quoted when it holds a separator, quote or newline.
+std::string Csv(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (const char c : text)
+    out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
+void CombineOptions::Check() const {
+  if (!(segment_radius > 0.0) || !std::isfinite(segment_radius)) {
+    throw ErrorAt("segment_radius must be > 0, got ", segment_radius);
+  }
+}
+
+ModelScaleReport CombineImages(std::vector<ImageEstimate> images,
+                               ScaleMethod method,
+                               const MonteCarloOptions& monte_carlo,
+                               const CombineOptions& options) {
+  options.Check();
+  ModelScaleReport report;
+  report.method = method;
+  report.monte_carlo = monte_carlo;
+  report.images = std::move(images);
+  std::vector<size_t> accepted;
+  for (size_t i = 0; i < report.images.size(); ++i) {
+    const ImageEstimate& image = report.images[i];
+    if (image.result && image.result->accepted && image.result->nominal &&
+        image.result->monte_carlo.num_samples > 0) {
+      accepted.push_back(i);
+    }
+  }
+  report.model = Combine(report.images, accepted);
+  // Leader clustering of the images' hits: the first image out of reach of
+  // every segment starts one; a segment's centre is its members' mean.
+  std::vector<std::vector<size_t>> members;
+  for (const size_t i : accepted) {
+    if (!report.images[i].hit_centroid) continue;
+    const Eigen::Vector3d& at = *report.images[i].hit_centroid;
+    bool placed = false;
+    for (size_t s = 0; s < members.size() && !placed; ++s) {
+      if ((report.segments[s].centre - at).norm() <= options.segment_radius) {
+        members[s].push_back(i);
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        for (const size_t m : members[s]) sum += *report.images[m].hit_centroid;
+        report.segments[s].centre =
+            sum / static_cast<double>(members[s].size());
+        placed = true;
+      }
+    }
+    if (!placed) {
+      members.push_back({i});
+      Segment segment;
+      segment.centre = at;
+      report.segments.push_back(segment);
+    }
+  }
+  for (size_t s = 0; s < members.size(); ++s) {
+    report.segments[s].scale = Combine(report.images, members[s]);
+  }
+  return report;
+}
+
+std::string ScaleJsonText(const ModelScaleReport& report) {
+  nlohmann::json images = nlohmann::json::array();
+  for (const ImageEstimate& image : report.images) {
+    nlohmann::json entry = {{"name", image.name}};
+    if (!image.result) {
+      entry["accepted"] = false;
+      entry["rejection"] = image.problem;
+      images.push_back(entry);
+      continue;
+    }
+    const ImageScaleResult& r = *image.result;
+    entry["accepted"] = r.accepted;
+    entry["rejection"] = r.rejection;
+    entry["nominal"] =
+        r.nominal ? nlohmann::json(*r.nominal) : nlohmann::json();
+    entry["monte_carlo"] = SummaryJson(r.monte_carlo);
+    if (image.hit_centroid) entry["hit_centroid"] = ToJson(*image.hit_centroid);
+    nlohmann::json items = nlohmann::json::array();
+    for (const ItemResult& item : r.items) {
+      items.push_back(
+          {{"item", item.item.name},
+           {"nominal", item.nominal.scale ? nlohmann::json(*item.nominal.scale)
+                                          : nlohmann::json()},
+           {"problem", item.nominal.problem},
+           {"monte_carlo", SummaryJson(item.monte_carlo)},
+           {"num_invalid", item.num_invalid},
+           {"first_invalid_reason", item.first_problem}});
+    }
+    entry["items"] = items;
+    images.push_back(entry);
+  }
+  nlohmann::json segments = nlohmann::json::array();
+  for (const Segment& segment : report.segments) {
+    nlohmann::json entry = CombinedJson(segment.scale, report.images);
+    entry["centre"] = ToJson(segment.centre);
+    segments.push_back(entry);
+  }
+  nlohmann::json json = CombinedJson(report.model, report.images);
+  json["format"] = kFormat;
+  json["version"] = kVersion;
+  json["convention"] =
+      "s = m / m_hat: multiply the model by s to get metres; a metric "
+      "model's scale error is s - 1";
+  json["method"] = ScaleMethodName(report.method);
+  json["num_iterations"] = report.monte_carlo.num_iterations;
+  json["seed"] = report.monte_carlo.seed;
+  json["num_images"] = report.images.size();
+  json["num_accepted"] = report.model.images.size();
+  json["segments"] = segments;
+  json["per_image"] = images;
+  return json.dump(2) + "\n";
+}
+
+void WriteScaleReport(const ModelScaleReport& report,
+                      const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  const CombinedScale& model = report.model;
+  // Plots.
+  Plot scales("Scale per image: nominal, 95 % Monte Carlo interval, items",
+              "image", "scale s", 1000, 520);
+  std::vector<double> x, nominal, low, high, item_x, item_y;
+  for (size_t i = 0; i < report.images.size(); ++i) {
+    const ImageEstimate& image = report.images[i];
+    if (!image.result || !image.result->nominal) continue;
+    const ImageScaleResult& r = *image.result;
+    x.push_back(static_cast<double>(i));
+    nominal.push_back(*r.nominal);
+    low.push_back(r.monte_carlo.p2_5);
+    high.push_back(r.monte_carlo.p97_5);
+    for (const ItemResult& item : r.items) {
+      if (!item.nominal.scale) continue;
+      item_x.push_back(static_cast<double>(i) + 0.15);
+      item_y.push_back(*item.nominal.scale);
+    }
+  }
+  scales.ErrorBars(x, low, high, Plot::Colour(0), "image 95 % interval");
+  scales.Points(x, nominal, Plot::Colour(3), "image nominal");
+  scales.Points(item_x, item_y, Plot::Colour(2), "laser / pair nominal");
+  if (model.nominal) {
+    scales.HorizontalLine(*model.nominal, Plot::Colour(1), "model scale");
+    scales.HorizontalLine(model.ci95_low, Plot::Colour(7), "model 95 % CI");
+    scales.HorizontalLine(model.ci95_high, Plot::Colour(7));
+  }
+  scales.WritePng(dir / "scales.png");
+  if (model.monte_carlo.num_samples > 0) {
+    Plot histogram("Monte Carlo distribution of the model's scale", "scale s",
+                   "iterations");
+    histogram.Histogram(model.per_iteration, 40, Plot::Colour(0));
+    histogram.VerticalLine(*model.nominal, Plot::Colour(1), "scale");
+    histogram.VerticalLine(model.ci95_low, Plot::Colour(7), "95 % CI");
+    histogram.VerticalLine(model.ci95_high, Plot::Colour(7));
+    histogram.WritePng(dir / "histogram.png");
+    Plot convergence("Monte Carlo convergence (running mean +- sigma)",
+                     "iterations", "scale s");
+    std::vector<double> n, mean, minus, plus;
+    double sum = 0.0, squares = 0.0;
+    size_t count = 0;
+    for (size_t k = 0; k < model.per_iteration.size(); ++k) {
+      const double s = model.per_iteration[k];
+      if (!std::isnan(s)) {
+        sum += s;
+        squares += s * s;
+        ++count;
+      }
+      if (count < 2 || (k + 1) % 25 != 0) continue;
+      const double m = sum / count;
+      const double sd =
+          std::sqrt(std::max(0.0, (squares - count * m * m) / (count - 1.0)));
+      n.push_back(static_cast<double>(k + 1));
+      mean.push_back(m);
+      minus.push_back(m - sd);
+      plus.push_back(m + sd);
+    }
+    convergence.Line(n, mean, Plot::Colour(0), "mean");
+    convergence.Line(n, minus, Plot::Colour(2), "mean - sigma");
+    convergence.Line(n, plus, Plot::Colour(2), "mean + sigma");
+    convergence.WritePng(dir / "convergence.png");
+  }
+  // Tables.
+  std::ostringstream images_csv;
+  images_csv << "image,accepted,rejection,nominal,mc_mean,mc_std,p2_5,p97_5,"
+                "num_samples\n";
+  std::ostringstream items_csv;
+  items_csv << "image,item,nominal,problem,mc_mean,mc_std,p2_5,p97_5,"
+               "num_invalid\n";
+  for (const ImageEstimate& image : report.images) {
+    if (!image.result) {
+      images_csv << Csv(image.name) << ",0," << Csv(image.problem)
+                 << ",,,,,,0\n";
+      continue;
+    }
+    const ImageScaleResult& r = *image.result;
+    const SampleSummary& mc = r.monte_carlo;
+    images_csv << Csv(image.name) << "," << r.accepted << ","
+               << Csv(r.rejection) << ","
+               << (r.nominal ? Fixed(*r.nominal, 7) : "") << ","
+               << SummaryCsv(mc) << "," << mc.num_samples << "\n";
+    for (const ItemResult& item : r.items) {
+      const SampleSummary& s = item.monte_carlo;
+      items_csv << Csv(image.name) << "," << Csv(item.item.name) << ","
+                << (item.nominal.scale ? Fixed(*item.nominal.scale, 7) : "")
+                << "," << Csv(item.nominal.problem) << "," << SummaryCsv(s)
+                << "," << item.num_invalid << "\n";
+    }
+  }
+  std::ostringstream segments_csv;
+  segments_csv << "segment,x,y,z,num_images,scale,sigma,ci95_low,ci95_high,"
+                  "birge_ratio\n";
+  for (size_t s = 0; s < report.segments.size(); ++s) {
+    const Segment& segment = report.segments[s];
+    segments_csv << s + 1 << "," << segment.centre.x() << ","
+                 << segment.centre.y() << "," << segment.centre.z() << ","
+                 << segment.scale.images.size() << ","
+                 << Fixed(*segment.scale.nominal, 7) << ","
+                 << Fixed(segment.scale.sigma, 7) << ","
+                 << Fixed(segment.scale.ci95_low, 7) << ","
+                 << Fixed(segment.scale.ci95_high, 7) << ","
+                 << Fixed(segment.scale.birge_ratio, 3) << "\n";
+  }
+  // The page.
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>"
+          "laserscale report</title><style>body{font-family:sans-serif;"
+          "margin:2em;max-width:1100px}table{border-collapse:collapse}"
+          "td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}"
+          "td:first-child{text-align:left}.bad{color:#b00}</style></head>"
+          "<body>\n<h1>Scale of the model from laser images</h1>\n";
+  if (model.nominal) {
+    html << "<p><b>Scale s = " << Fixed(*model.nominal) << "</b>, 95 % "
+         << "interval [" << Fixed(model.ci95_low) << ", "
+         << Fixed(model.ci95_high) << "], &sigma; = " << Fixed(model.sigma)
+         << " (scale error of a metric model s &minus; 1 = "
+         << Percent(*model.nominal) << "), from " << model.images.size()
+         << " of " << report.images.size() << " laser images, method "
+         << ScaleMethodName(report.method) << ", "
+         << report.monte_carlo.num_iterations
+         << " Monte Carlo iterations. Multiply the model by s to get metres "
+            "(<code>laserscale apply</code>).</p>\n";
+    if (model.birge_ratio > 1.0) {
+      html << "<p class=\"bad\">The images disagree more than their "
+              "uncertainties allow (Birge ratio "
+           << Fixed(model.birge_ratio, 2)
+           << "); the interval is widened by it. A scale that varies along "
+              "the model (see the segments) or an unmodelled error.</p>\n";
+    }
+  } else {
+    html << "<p class=\"bad\">No laser image was accepted: no scale. See "
+            "the reasons below.</p>\n";
+  }
+  html << "<p>How to read it: docs/laserscale.md. Files: scale.json, "
+          "images.csv, items.csv, segments.csv.</p>\n";
+  html << "<h2>Per image</h2><img src=\"scales.png\" width=\"1000\">\n";
+  if (model.monte_carlo.num_samples > 0) {
+    html << "<h2>Monte Carlo</h2><img src=\"histogram.png\" width=\"700\">"
+            "<img src=\"convergence.png\" width=\"700\">\n";
+  }
+  html << "<h2>Segments</h2><table><tr><th>segment</th><th>images</th>"
+          "<th>scale</th><th>95 % interval</th><th>Birge ratio</th></tr>\n";
+  for (size_t s = 0; s < report.segments.size(); ++s) {
+    const CombinedScale& c = report.segments[s].scale;
+    html << "<tr><td>" << s + 1 << "</td><td>" << c.images.size() << "</td><td>"
+         << Fixed(*c.nominal) << "</td><td>[" << Fixed(c.ci95_low) << ", "
+         << Fixed(c.ci95_high) << "]</td><td>" << Fixed(c.birge_ratio, 2)
+         << "</td></tr>\n";
+  }
+  html << "</table>\n<h2>Images</h2><table><tr><th>image</th><th>nominal</th>"
+          "<th>MC mean &plusmn; &sigma;</th><th>95 % interval</th><th>status"
+          "</th><th>spots</th></tr>\n";
+  for (const ImageEstimate& image : report.images) {
+    html << "<tr><td>" << Html(image.name) << "</td>";
+    if (!image.result) {
+      html << "<td></td><td></td><td></td><td class=\"bad\">"
+           << Html(image.problem) << "</td><td></td></tr>\n";
+      continue;
+    }
+    const ImageScaleResult& r = *image.result;
+    html << "<td>" << (r.nominal ? Fixed(*r.nominal) : "") << "</td><td>"
+         << Fixed(r.monte_carlo.mean) << " &plusmn; "
+         << Fixed(r.monte_carlo.std_dev) << "</td><td>["
+         << Fixed(r.monte_carlo.p2_5) << ", " << Fixed(r.monte_carlo.p97_5)
+         << "]</td><td" << (r.accepted ? ">accepted" : " class=\"bad\">")
+         << Html(r.rejection) << "</td><td>";
+    if (!image.overlay.empty()) {
+      html << "<a href=\"" << Html(image.overlay) << "\">overlay</a>";
+    }
+    html << "</td></tr>\n";
+  }
+  html << "</table>\n</body></html>\n";
+  const auto text = [](const std::string& content) {
+    return [content](std::ostream& out) { out << content; };
+  };
+  WriteFilesAtomically({{dir / "scale.json", text(ScaleJsonText(report))},
+                        {dir / "images.csv", text(images_csv.str())},
+                        {dir / "items.csv", text(items_csv.str())},
+                        {dir / "segments.csv", text(segments_csv.str())},
+                        {dir / "index.html", text(html.str())}},
+                       false);
+}
+
+double ReadScaleFromJson(const std::filesystem::path& path) {
+  const nlohmann::json json =
+      ParseJsonText(ReadFileToString(path), path.string());
+  if (!json.is_object() || json.value("format", "") != kFormat) {
+    throw ErrorAt(path.string(), ": not a laserscale scale.json (format \"",
+                  kFormat, "\")");
+  }
+  const auto scale = json.find("scale");
+  if (scale == json.end() || !scale->is_number()) {
+    throw ErrorAt(path.string(),
+                  ": no scale (no laser image was accepted; see index.html)");
+  }
+  const double s = scale->get<double>();
+  if (!std::isfinite(s) || !(s > 0.0)) {
+    throw ErrorAt(path.string(), ": the scale ", s, " is not positive");
+  }
+  return s;
+}
+
+}  // namespace uw

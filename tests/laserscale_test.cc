@@ -1,0 +1,313 @@
+// laserscale end to end on the default uwsim survey reconstructed by stock
+// colmap (fixture uwsim_survey), with its laser images added to a copy of
+// the database by stock colmap (fixture laser_images,
+// scripts/add_laser_images.sh).
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <fstream>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "colmap_plugins/align/similarity.h"
+#include "colmap_plugins/mesh/mesh.h"
+#include "colmap_plugins/scene/model_io.h"
+#include "colmap_plugins/util/file.h"
+#include "laserscale/laser_poses_io.h"
+#include "laserscale/spots_io.h"
+#include "tests/support/process.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::FreshTestDir;
+using testing::Quoted;
+using testing::RunProcess;
+
+const fs::path kSurveyDir = UW_SURVEY_DIR;
+const fs::path kLaserDir = UW_LASER_DIR;
+const fs::path kLaserscale = fs::path(UW_BIN_DIR) / "laserscale";
+
+std::string RunLaserscale(const std::string& command) {
+  const auto result = RunProcess(command, true);
+  EXPECT_EQ(result.exit_code, 0) << command << "\n" << result.output;
+  return result.output;
+}
+
+Rigid3d PoseFromJson(const nlohmann::json& json) {
+  Rigid3d pose;
+  const auto& q = json.at("qvec");
+  pose.rotation = Eigen::Quaterniond(q[0].get<double>(), q[1].get<double>(),
+                                     q[2].get<double>(), q[3].get<double>());
+  const auto& t = json.at("tvec");
+  pose.translation = Eigen::Vector3d(t[0].get<double>(), t[1].get<double>(),
+                                     t[2].get<double>());
+  return pose;
+}
+
+// The similarity that takes stock colmap's model of the survey to the
+// truth, fitted to the survey images' camera centres.
+SimilarityResult TruthFromModel(const Reconstruction& model,
+                                const Reconstruction& truth) {
+  std::map<std::string, Eigen::Vector3d> true_centres;
+  for (const Image& image : truth.Images()) {
+    true_centres[image.name] = image.ProjectionCenter();
+  }
+  std::vector<Eigen::Vector3d> src;
+  std::vector<Eigen::Vector3d> dst;
+  for (const Image& image : model.Images()) {
+    src.push_back(image.ProjectionCenter());
+    dst.push_back(true_centres.at(image.name));
+  }
+  SimilarityOptions options;
+  options.robust = false;
+  return EstimateSimilarity(src, dst, nullptr, options);
+}
+
+std::string Localize(const fs::path& poses) {
+  return RunLaserscale(kLaserscale.string() + " localize --database_path " +
+                       Quoted(kLaserDir / "database.db") + " --input_path " +
+                       Quoted(kSurveyDir / "sparse/0") + " --image_list_path " +
+                       Quoted(kLaserDir / "laser_list.txt") + " --out " +
+                       Quoted(poses));
+}
+
+// Acceptance 5: each laser image localized against stock colmap's model,
+// mapped into the truth's frame by the similarity of the survey images'
+// centres, lies within 1 cm and 0.05 deg of its true pose.
+TEST(Laserscale, LocalizesLaserImagesAgainstStockColmapWithinACentimetre) {
+  const fs::path dir = FreshTestDir("uw_laserscale_localize");
+  Localize(dir / "poses.json");
+  const std::vector<LocalizedImage> poses =
+      ReadLaserPosesJson(dir / "poses.json");
+  const Reconstruction model = ReadModel(kSurveyDir / "sparse/0");
+  const Reconstruction truth = ReadModel(kSurveyDir / "sim/truth");
+  const SimilarityResult alignment = TruthFromModel(model, truth);
+  const Sim3d& truth_from_model = alignment.b_from_a;
+  std::cout << "model vs truth: survey camera centres RMS "
+            << 1000.0 * alignment.rms_m << " mm after the similarity\n";
+  std::map<std::string, Eigen::Quaterniond> true_rotations;
+  for (const Image& image : truth.Images()) {
+    true_rotations[image.name] = image.cam_from_world.rotation.normalized();
+  }
+  double max_model_angle_deg = 0.0;
+  for (const Image& image : model.Images()) {
+    const Eigen::Quaterniond cam_from_truth =
+        image.cam_from_world.rotation.normalized() *
+        truth_from_model.rotation.conjugate();
+    max_model_angle_deg =
+        std::max(max_model_angle_deg,
+                 cam_from_truth.angularDistance(true_rotations.at(image.name)) *
+                     180.0 / M_PI);
+  }
+  std::cout << "model vs truth: survey camera rotations up to "
+            << max_model_angle_deg << " deg off\n";
+
+  const nlohmann::json laser_truth = nlohmann::json::parse(
+      ReadFileToString(kSurveyDir / "sim/truth/laser_images.json"));
+  std::map<std::string, Rigid3d> true_poses;
+  std::map<std::string, std::string> neighbour;  // the survey image before
+  for (const auto& image : laser_truth.at("images")) {
+    const std::string name = image.at("name").get<std::string>();
+    true_poses[name] = PoseFromJson(image.at("cam_from_world"));
+    char survey_name[32];
+    std::snprintf(survey_name, sizeof(survey_name), "%05d.png",
+                  image.at("survey_image_index").get<int>());
+    neighbour[name] = survey_name;
+  }
+  std::map<std::string, Eigen::Quaterniond> model_rotations;
+  for (const Image& image : model.Images()) {
+    model_rotations[image.name] = image.cam_from_world.rotation.normalized();
+  }
+  ASSERT_EQ(poses.size(), true_poses.size());
+  double max_centre_m = 0.0;
+  double max_angle_deg = 0.0;
+  double max_relative_deg = 0.0;
+  for (const LocalizedImage& pose : poses) {
+    ASSERT_TRUE(pose.success) << pose.name << ": " << pose.problem;
+    EXPECT_GT(pose.inliers.size(), 100u) << pose.name;
+    const Rigid3d& truth_pose = true_poses.at(pose.name);
+    const Eigen::Vector3d centre =
+        truth_from_model * pose.cam_from_world.Inverse().translation;
+    const Eigen::Vector3d true_centre = truth_pose.Inverse().translation;
+    const Eigen::Quaterniond cam_from_truth =
+        pose.cam_from_world.rotation.normalized() *
+        truth_from_model.rotation.conjugate();
+    const double angle_deg =
+        cam_from_truth.angularDistance(truth_pose.rotation.normalized()) *
+        180.0 / M_PI;
+    const double centre_m = (centre - true_centre).norm();
+    // The rotation relative to the survey image before it, in the model and
+    // in the truth: what localization adds to the model's own error.
+    const Eigen::Quaterniond relative_model =
+        pose.cam_from_world.rotation.normalized() *
+        model_rotations.at(neighbour.at(pose.name)).conjugate();
+    const Eigen::Quaterniond relative_truth =
+        truth_pose.rotation.normalized() *
+        true_rotations.at(neighbour.at(pose.name)).conjugate();
+    const double relative_deg =
+        relative_model.angularDistance(relative_truth) * 180.0 / M_PI;
+    max_relative_deg = std::max(max_relative_deg, relative_deg);
+    std::cout << pose.name << ": " << pose.inliers.size() << " inliers, RMS "
+              << pose.rms_error_px << " px, centre " << 1000.0 * centre_m
+              << " mm, rotation " << angle_deg
+              << " deg off the truth; relative to " << neighbour.at(pose.name)
+              << " " << relative_deg << " deg off\n";
+    max_centre_m = std::max(max_centre_m, centre_m);
+    max_angle_deg = std::max(max_angle_deg, angle_deg);
+  }
+  // The centres to 1 cm in the truth's frame; the rotations to 0.05 deg
+  // relative to the model's images (the model's own rotations are up to
+  // ~0.1 deg off the truth, which no localization against it can undo).
+  EXPECT_LT(max_centre_m, 0.01);
+  EXPECT_LT(max_relative_deg, 0.05);
+  EXPECT_LT(max_angle_deg, max_model_angle_deg + 0.05);
+}
+
+// The whole chain on the default survey: detect the spots, localize the
+// laser images, estimate the scale (FUM, Monte Carlo) and apply it. The
+// true scale of stock colmap's model is the similarity's to the truth.
+// With the true surface moved into the model's frame the estimate must be
+// right within its own 95 % interval; with the sparse heightfield (the
+// stand-in until a dense mesh) the surface's coarseness biases it.
+TEST(Laserscale, DetectLocalizeEstimateApplyOnTheDefaultSurvey) {
+  const fs::path dir = FreshTestDir("uw_laserscale_chain");
+  const fs::path sim = kSurveyDir / "sim";
+  RunLaserscale(kLaserscale.string() + " detect --images " +
+                Quoted(sim / "laser_images") + " --lasers " +
+                Quoted(sim / "lasers.json") + " --input_path " +
+                Quoted(kSurveyDir / "sparse/0") + " --out " +
+                Quoted(dir / "spots.json") + " --overlays " +
+                Quoted(dir / "overlays"));
+  Localize(dir / "poses.json");
+  const Reconstruction model = ReadModel(kSurveyDir / "sparse/0");
+  const Sim3d truth_from_model =
+      TruthFromModel(model, ReadModel(sim / "truth")).b_from_a;
+  const double true_scale = truth_from_model.scale;
+  TriangleMesh true_surface = ReadPly(sim / "truth/mesh.ply");
+  const Sim3d model_from_truth = truth_from_model.Inverse();
+  for (Eigen::Vector3d& vertex : true_surface.vertices) {
+    vertex = model_from_truth * vertex;
+  }
+  WritePly(true_surface, dir / "true_surface.ply");
+  RunLaserscale(kLaserscale.string() + " sparse_surface --input_path " +
+                Quoted(kSurveyDir / "sparse/0") + " --output_path " +
+                Quoted(dir / "sparse_surface.ply"));
+  for (const std::string surface : {"true_surface", "sparse_surface"}) {
+    const fs::path report = dir / ("report_" + surface);
+    RunLaserscale(
+        kLaserscale.string() + " estimate --mesh " +
+        Quoted(dir / (surface + ".ply")) + " --poses " +
+        Quoted(dir / "poses.json") + " --spots " + Quoted(dir / "spots.json") +
+        " --lasers " + Quoted(sim / "lasers.json") + " --overlays " +
+        Quoted(dir / "overlays") + " --mc 2000 --out " + Quoted(report));
+    const nlohmann::json scale =
+        nlohmann::json::parse(ReadFileToString(report / "scale.json"));
+    const double s = scale.at("scale").get<double>();
+    const double low = scale.at("ci95")[0].get<double>();
+    const double high = scale.at("ci95")[1].get<double>();
+    std::cout << surface << ": s = " << s << " [" << low << ", " << high
+              << "], true " << true_scale << ": error "
+              << 100.0 * (s / true_scale - 1.0) << " %, "
+              << scale.at("num_accepted") << " of " << scale.at("num_images")
+              << " images\n";
+    EXPECT_GE(scale.at("num_accepted").get<int>(), 5) << surface;
+    if (surface == "true_surface") {
+      EXPECT_LT(std::abs(s / true_scale - 1.0), 0.005);
+      EXPECT_LE(low, true_scale);
+      EXPECT_GE(high, true_scale);
+    } else {
+      EXPECT_LT(std::abs(s / true_scale - 1.0), 0.02);
+    }
+    EXPECT_TRUE(fs::exists(report / "index.html"));
+    EXPECT_TRUE(fs::exists(report / "scales.png"));
+  }
+  // apply: the scaled model's camera centres are the truth's up to a rigid
+  // motion, to the scale's own error.
+  RunLaserscale(kLaserscale.string() + " apply --input_path " +
+                Quoted(kSurveyDir / "sparse/0") + " --scale " +
+                Quoted(dir / "report_true_surface/scale.json") +
+                " --output_path " + Quoted(dir / "metric"));
+  const Reconstruction metric = ReadModel(dir / "metric");
+  const double remaining =
+      TruthFromModel(metric, ReadModel(sim / "truth")).b_from_a.scale;
+  EXPECT_NEAR(remaining, 1.0, 0.005);
+}
+
+// Acceptance 7: bad input gives per-item flags or a clear error, never a
+// NaN scale. Spots are the truth's pixels (the detector is tested
+// elsewhere); one is moved outside its image.
+TEST(Laserscale, EstimateFlagsBadItemsAndRefusesBadInputs) {
+  const fs::path dir = FreshTestDir("uw_laserscale_bad_input");
+  const fs::path sim = kSurveyDir / "sim";
+  Localize(dir / "poses.json");
+  const nlohmann::json truth =
+      nlohmann::json::parse(ReadFileToString(sim / "truth/laser_images.json"));
+  std::vector<ImageSpots> images;
+  for (const auto& image : truth.at("images")) {
+    ImageSpots spots;
+    spots.name = image.at("name").get<std::string>();
+    spots.setup = truth.at("setup").get<std::string>();
+    for (const auto& spot : image.at("spots")) {
+      DetectedSpot detected;
+      detected.laser = spot.at("laser").get<std::string>();
+      if (spot.at("visible").get<bool>()) {
+        detected.detected = detected.stable = true;
+        detected.detection_rate = 1.0;
+        detected.pixel = Eigen::Vector2d(spot.at("pixel")[0].get<double>(),
+                                         spot.at("pixel")[1].get<double>());
+        detected.covariance = 0.04 * Eigen::Matrix2d::Identity();
+      } else {
+        detected.problem = "not visible";
+      }
+      spots.spots.push_back(detected);
+    }
+    images.push_back(spots);
+  }
+  images[0].spots[0].pixel = Eigen::Vector2d(-50.0, -50.0);
+  std::ofstream(dir / "spots.json") << SpotsJsonText(images);
+  const std::string estimate = kLaserscale.string() + " estimate --poses " +
+                               Quoted(dir / "poses.json") + " --spots " +
+                               Quoted(dir / "spots.json") + " --mc 200 --out " +
+                               Quoted(dir / "report");
+  RunLaserscale(kLaserscale.string() + " sparse_surface --input_path " +
+                Quoted(kSurveyDir / "sparse/0") + " --output_path " +
+                Quoted(dir / "surface.ply"));
+  RunLaserscale(estimate + " --mesh " + Quoted(dir / "surface.ply") +
+                " --lasers " + Quoted(sim / "lasers.json"));
+  const std::string items = ReadFileToString(dir / "report/items.csv");
+  EXPECT_NE(items.find("lies outside the 1024x768 image"), std::string::npos)
+      << items;
+  EXPECT_EQ(items.find("nan"), std::string::npos);
+  const std::string scale = ReadFileToString(dir / "report/scale.json");
+  EXPECT_EQ(scale.find("NaN"), std::string::npos);
+  EXPECT_EQ(scale.find("nan"), std::string::npos);
+
+  // An empty mesh, lasers without directions: clear errors, no report.
+  std::ofstream(dir / "empty.ply")
+      << "ply\nformat ascii 1.0\nelement vertex 0\nproperty double x\n"
+         "property double y\nproperty double z\nelement face 0\n"
+         "property list uchar int vertex_indices\nend_header\n";
+  nlohmann::json lasers =
+      nlohmann::json::parse(ReadFileToString(sim / "lasers.json"));
+  lasers["setups"][0]["lasers"][1].erase("direction_in_cam");
+  std::ofstream(dir / "no_direction.json") << lasers.dump();
+  for (const auto& [flags, words] :
+       std::vector<std::pair<std::string, std::string>>{
+           {" --mesh " + Quoted(dir / "empty.ply") + " --lasers " +
+                Quoted(sim / "lasers.json"),
+            "no triangles"},
+           {" --mesh " + Quoted(dir / "surface.ply") + " --lasers " +
+                Quoted(dir / "no_direction.json"),
+            "direction_in_cam"}}) {
+    const auto result =
+        RunProcess(estimate + "_" + std::to_string(words.size()) + flags, true);
+    EXPECT_NE(result.exit_code, 0) << flags;
+    EXPECT_NE(result.output.find(words), std::string::npos) << result.output;
+  }
+}
+
+}  // namespace
+}  // namespace uw
