@@ -65,14 +65,21 @@ DetectedSpot SpotFromJson(const nlohmann::json& json,
   DetectedSpot spot;
   nlohmann::json pixel;
   nlohmann::json covariance;
+  // Unknown keys first: a misspelt key is reported as such, not as the
+  // required one it was meant to be.
+  fields.Read("problem", &spot.problem);
+  nlohmann::json declared;
+  for (const char* key : {"laser", "detected", "stable", "detection_rate",
+                          "pixel", "covariance"}) {
+    fields.Read(key, &declared);
+  }
+  fields.RejectUnknown();
   fields.Require("laser", &spot.laser);
   fields.Require("detected", &spot.detected);
   fields.Require("stable", &spot.stable);
   fields.Require("detection_rate", &spot.detection_rate);
   fields.Require("pixel", &pixel);
   fields.Require("covariance", &covariance);
-  fields.Read("problem", &spot.problem);
-  fields.RejectUnknown();
   const std::string what = where + " (laser " + spot.laser + ")";
   if (spot.laser.empty()) throw ErrorAt(where, ": empty laser name");
   const std::vector<double> xy = Numbers(pixel, 2, what + ".pixel");
@@ -124,31 +131,24 @@ std::string SpotsJsonText(const std::vector<ImageSpots>& images) {
 
 std::vector<ImageSpots> ParseSpotsJson(const std::string& text,
                                        const std::string& where) {
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw ErrorAt(where, ": ", error.what());
-  }
+  const nlohmann::json json = ParseJsonText(text, where);
   JsonFields file(json, where);
-  std::string format;
-  int version = 0;
   nlohmann::json json_images;
-  file.Require("format", &format);
-  file.Require("version", &version);
+  file.RequireFormat(kFormat, kVersion);
   file.Require("images", &json_images);
   file.RejectUnknown();
-  if (format != kFormat || version != kVersion) {
-    throw ErrorAt(where, ": expected format \"", kFormat, "\" version ",
-                  kVersion, ", got \"", format, "\" version ", version);
-  }
   if (!json_images.is_array()) {
     throw ErrorAt(where, ": \"images\" must be an array");
   }
   std::vector<ImageSpots> images;
   std::set<std::string> names;
   for (size_t i = 0; i < json_images.size(); ++i) {
-    JsonFields fields(json_images[i], ImageWhere(where, i, ""));
+    const nlohmann::json& entry = json_images[i];
+    const bool named = entry.is_object() && entry.contains("name") &&
+                       entry["name"].is_string();
+    JsonFields fields(
+        entry,
+        ImageWhere(where, i, named ? entry["name"].get<std::string>() : ""));
     ImageSpots image;
     nlohmann::json json_spots;
     fields.Require("name", &image.name);

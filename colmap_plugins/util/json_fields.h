@@ -27,12 +27,13 @@ inline nlohmann::json ToJson(const Eigen::Matrix3d& value) {
   return rows;
 }
 
-// Parses a file's text; a syntax error names `where` and the position.
+// Parses a file's text; a syntax error or a number out of range (1e999)
+// names `where` and the position.
 inline nlohmann::json ParseJsonText(const std::string& text,
                                     const std::string& where) {
   try {
     return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& error) {
+  } catch (const nlohmann::json::exception& error) {
     throw ErrorAt(where, ": ", error.what());
   }
 }
