@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -13,7 +12,6 @@
 #include <tbb/task_arena.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 
@@ -54,18 +52,17 @@ double HueDistanceDeg(double a, double b) {
 // order.
 struct LaserColour {
   double hue_deg = 0.0;
-  bool chromatic = true;  // false: a white laser, no hue test
+  bool chromatic = true;  // false: white (saturation < 0.1), no hue test
   int dominant = 2;       // its strongest channel: V on its pixels
   int weakest = 0;        // its weakest: the least disturbed by the spots
 };
 
-LaserColour ColourOf(const Laser& laser, double min_saturation) {
+LaserColour ColourOf(const Laser& laser) {
   const Eigen::Vector3d& rgb = laser.colour;
   LaserColour colour;
   colour.hue_deg = HueDeg(rgb(0), rgb(1), rgb(2));
-  colour.chromatic =
-      rgb.maxCoeff() > 0.0 &&
-      (rgb.maxCoeff() - rgb.minCoeff()) / rgb.maxCoeff() >= min_saturation;
+  colour.chromatic = rgb.maxCoeff() > 0.0 &&
+                     (rgb.maxCoeff() - rgb.minCoeff()) / rgb.maxCoeff() >= 0.1;
   int max_rgb = 0;
   int min_rgb = 0;
   rgb.maxCoeff(&max_rgb);
@@ -110,12 +107,18 @@ struct Roi {
   size_t laser = 0;
   std::vector<std::vector<Eigen::Vector2d>> beams;
   std::vector<std::vector<Eigen::Vector2d>> aux_beams;
+  // The alignment, for AuxView (OpenCV pixel convention).
+  Eigen::Matrix3d aux_view_from_roi = Eigen::Matrix3d::Identity();
+  // The σ of the aligned aux's noise per unit σ of the aux's: bilinear
+  // resampling averages neighbouring pixels.
+  double aux_noise_gain = 1.0;
   LaserColour colour;
   cv::Mat main;   // CV_32FC3 levels of the image
   cv::Mat aux;    // CV_32FC3 aligned, matched aux; empty: none
   cv::Mat valid;  // CV_8U, 255 where the texture-removed value exists
-  // Per channel, CV_8U 255 where the image (the aux) clips it or a pixel
-  // the low-pass mixes in does: there its level is only a bound.
+  // Per channel, CV_8U 255 where the image (the aligned aux, before
+  // matching) clips it or a pixel the low-pass mixes in does: there its
+  // level is only a bound.
   std::array<cv::Mat, 3> clipped_main;
   std::array<cv::Mat, 3> clipped_aux;
   std::string texture_note;  // why the texture was not removed
@@ -136,6 +139,33 @@ struct Roi {
   std::optional<GaussianSpot> nominal_spot;
   std::optional<GaussianSpot> nominal_print;
 };
+
+// Where the aligned aux shows what the aux has at ROI pixel p (both COLMAP
+// convention, ROI coordinates).
+Eigen::Vector2d AuxView(const Roi& roi, const Eigen::Vector2d& p) {
+  const Eigen::Vector3d h =
+      roi.aux_view_from_roi * Eigen::Vector3d(p.x() - 0.5, p.y() - 0.5, 1.0);
+  return h.head<2>() / h.z() + Eigen::Vector2d(0.5, 0.5);
+}
+
+// The unit direction of the polyline at its point nearest to p.
+Eigen::Vector2d DirectionNear(const std::vector<Eigen::Vector2d>& line,
+                              const Eigen::Vector2d& p) {
+  Eigen::Vector2d best = Eigen::Vector2d::UnitX();
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (size_t i = 1; i < line.size(); ++i) {
+    const Eigen::Vector2d d = line[i] - line[i - 1];
+    if (d.squaredNorm() == 0.0) continue;
+    const double t =
+        std::clamp((p - line[i - 1]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    const double distance = (p - (line[i - 1] + t * d)).norm();
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = d.normalized();
+    }
+  }
+  return best;
+}
 
 struct Detection {
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // image coordinates
@@ -186,15 +216,20 @@ std::vector<Eigen::Vector2d> BeamImage(const Camera& camera, const Laser& laser,
   return points;
 }
 
-// Median and MAD-based σ of the values of `image` (CV_32F) under `mask`.
+// Median and MAD-based σ of the values of `image` (CV_32F) under `mask`,
+// from a regular subsample of about kRobustSamples pixels: plenty for a
+// level and a spread, and a fraction of the cost on large patches.
+constexpr size_t kRobustSamples = 4096;
 RobustLevel RobustStats(const cv::Mat& image, const cv::Mat& mask) {
+  const size_t stride = std::max<size_t>(1, image.total() / kRobustSamples);
   std::vector<float> values;
-  values.reserve(image.total());
+  values.reserve(image.total() / stride + 1);
+  size_t index = 0;
   for (int r = 0; r < image.rows; ++r) {
     const float* row = image.ptr<float>(r);
     const uint8_t* m = mask.ptr<uint8_t>(r);
-    for (int c = 0; c < image.cols; ++c) {
-      if (m[c]) values.push_back(row[c]);
+    for (int c = 0; c < image.cols; ++c, ++index) {
+      if (index % stride == 0 && m[c]) values.push_back(row[c]);
     }
   }
   if (values.empty()) return {};
@@ -281,16 +316,55 @@ void MatchHistogram(const cv::Mat& main, const cv::Mat& mask, cv::Mat* aux) {
     return (k - 1) - 0.5 +
            (p - cdf_main[k - 1]) / (cdf_main[k] - cdf_main[k - 1]);
   };
+  const auto map = [&](double v) {
+    return v >= aux_high  ? main_high + (v - aux_high)
+           : v <= aux_low ? main_low + (v - aux_low)
+                          : main_inverse(aux_cdf(v));
+  };
+  // The map is piecewise linear with knots at bin edges: tabulated at
+  // 1/kSteps levels and interpolated, it is exact to ~1e-3 levels. The
+  // aligned aux lies in [0, 255] (bilinear samples of 8-bit levels).
+  constexpr int kSteps = 8;
+  std::array<float, 255 * kSteps + 2> table;
+  for (size_t i = 0; i < table.size(); ++i) {
+    table[i] = static_cast<float>(map(static_cast<double>(i) / kSteps));
+  }
   for (int r = 0; r < aux->rows; ++r) {
     float* row = aux->ptr<float>(r);
     for (int c = 0; c < aux->cols; ++c) {
-      const double v = row[c];
-      const double mapped = v >= aux_high  ? main_high + (v - aux_high)
-                            : v <= aux_low ? main_low + (v - aux_low)
-                                           : main_inverse(aux_cdf(v));
-      row[c] = static_cast<float>(mapped);
+      const float x = std::clamp(row[c], 0.0f, 255.0f) * kSteps;
+      const int i = static_cast<int>(x);
+      row[c] = table[i] + (x - i) * (table[i + 1] - table[i]);
     }
   }
+}
+
+// Where channel c of `levels` (CV_32FC3) is clipped, grown by the
+// low-pass's reach: CV_8U, 255 there.
+cv::Mat Clipped(const cv::Mat& levels, int c,
+                const SpotDetectorOptions& options) {
+  const int reach = static_cast<int>(std::ceil(3.0 * options.lowpass_sigma_px));
+  cv::Mat mask;
+  cv::compare(Channel(levels, c), options.saturation_level, mask, cv::CMP_GE);
+  cv::dilate(mask, mask,
+             cv::getStructuringElement(cv::MORPH_ELLIPSE,
+                                       cv::Size(2 * reach + 1, 2 * reach + 1)));
+  return mask;
+}
+
+// Replaces the pixels far above the patch's typical level (spots: a
+// saturated spot is white in every channel), and a few pixels around them,
+// by the median, so that the alignment follows the texture: in a "shifted"
+// aux the spots move with the camera, not with the scene.
+void FlattenHighlights(cv::Mat* patch) {
+  const RobustLevel level =
+      RobustStats(*patch, cv::Mat(patch->size(), CV_8U, cv::Scalar(255)));
+  cv::Mat high;
+  cv::compare(*patch, level.median + 4.0 * std::max(level.sigma, 1.0), high,
+              cv::CMP_GT);
+  cv::dilate(high, high,
+             cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(7, 7)));
+  patch->setTo(level.median, high);
 }
 
 // LSD steps 2-4: the aux patch of the ROI, aligned on the laser's weakest
@@ -310,14 +384,12 @@ void AlignAux(const cv::Mat& image, const cv::Mat& aux,
   cv::Mat input;
   Channel(image(roi->rect), roi->colour.weakest).convertTo(templ, CV_32F);
   Channel(aux(search), roi->colour.weakest).convertTo(input, CV_32F);
+  FlattenHighlights(&templ);
+  FlattenHighlights(&input);
   // OpenCV correlates in the Fourier domain and normalises with integral
   // images (Lewis's fast normalised cross-correlation).
   cv::Mat ncc;
-  const double t0 = cv::getTickCount();
   cv::matchTemplate(input, templ, ncc, cv::TM_CCOEFF_NORMED);
-  if (getenv("SDT"))
-    fprintf(stderr, "ncc %.1f ms\n",
-            (cv::getTickCount() - t0) / cv::getTickFrequency() * 1e3);
   double best = 0.0;
   cv::Point at;
   cv::minMaxLoc(ncc, nullptr, &best, nullptr, &at);
@@ -343,9 +415,6 @@ void AlignAux(const cv::Mat& image, const cv::Mat& aux,
     // ECC fails on nearly uniform patches; the NCC translation stands.
     warp = translation.clone();
   }
-  if (getenv("SDT"))
-    fprintf(stderr, "ncc+ecc %.1f ms\n",
-            (cv::getTickCount() - t0) / cv::getTickFrequency() * 1e3);
   // A homography that moves the ROI's corners farther than the search
   // allows is a divergence, not the camera's motion.
   const std::vector<cv::Point2f> corners = {
@@ -362,23 +431,39 @@ void AlignAux(const cv::Mat& image, const cv::Mat& aux,
       break;
     }
   }
-  // The aux's spots lie on the beams in the aux's own pixels; the inverse
-  // warp takes them into the ROI.
-  const cv::Mat roi_from_search = warp.inv();
+  // Where the aligned aux shows what the aux has at a pixel of the ROI
+  // (OpenCV's convention, pixel centres at integers): the aux's pixel is
+  // in the search region at the ROI's offset, and the warp takes the ROI
+  // into the search region.
+  Eigen::Matrix3d same_pixel = Eigen::Matrix3d::Identity();
+  same_pixel.topRightCorner<2, 1>() =
+      Eigen::Vector2d(roi->rect.x - search.x, roi->rect.y - search.y);
+  Eigen::Matrix3d search_from_roi;
+  cv::Mat warp_double;
+  warp.convertTo(warp_double, CV_64F);
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      search_from_roi(r, c) = warp_double.at<double>(r, c);
+    }
+  }
+  roi->aux_view_from_roi = search_from_roi.inverse() * same_pixel;
+  // Bilinear weights (1 - u, u) x (1 - v, v) at the ROI's centre, where the
+  // sampling offset is that of the whole ROI up to the homography's slight
+  // non-translation.
+  const Eigen::Vector3d sampled =
+      search_from_roi *
+      Eigen::Vector3d(0.5 * (templ.cols - 1), 0.5 * (templ.rows - 1), 1.0);
+  const Eigen::Vector2d offset = sampled.head<2>() / sampled.z();
+  const double u = offset.x() - std::floor(offset.x());
+  const double v = offset.y() - std::floor(offset.y());
+  roi->aux_noise_gain =
+      std::sqrt((Square(u) + Square(1.0 - u)) * (Square(v) + Square(1.0 - v)));
+  // The aux's spots lie on the beams in the aux's own pixels.
   for (const std::vector<Eigen::Vector2d>& beam : roi->beams) {
-    std::vector<cv::Point2f> in_search;
-    for (const Eigen::Vector2d& p : beam) {
-      in_search.emplace_back(
-          static_cast<float>(p.x() + roi->rect.x - search.x),
-          static_cast<float>(p.y() + roi->rect.y - search.y));
-    }
-    std::vector<cv::Point2f> in_roi;
-    if (!in_search.empty()) {
-      cv::perspectiveTransform(in_search, in_roi, roi_from_search);
-    }
     roi->aux_beams.emplace_back();
-    for (const cv::Point2f& p : in_roi)
-      roi->aux_beams.back().emplace_back(p.x, p.y);
+    for (const Eigen::Vector2d& p : beam) {
+      roi->aux_beams.back().push_back(AuxView(*roi, p));
+    }
   }
   cv::Mat aux_float;
   aux(search).convertTo(aux_float, CV_32FC3);
@@ -392,6 +477,10 @@ void AlignAux(const cv::Mat& image, const cv::Mat& aux,
   // Bilinear samples on the warped border mix in the zero border.
   cv::erode(roi->valid, roi->valid, cv::Mat(), cv::Point(-1, -1), 1,
             cv::BORDER_CONSTANT, cv::Scalar(0));
+
+  for (int c = 0; c < 3; ++c) {
+    roi->clipped_aux[c] = Clipped(roi->aux, c, options);
+  }
 
   // Histogram matching ignores the pixels the spots change (either frame's:
   // a difference far out in any channel), so that the spot's levels are not
@@ -540,40 +629,70 @@ struct FitSamples {
   std::vector<int8_t> bounds;
 };
 
-// The model B + sum_k a_k exp(-q_k / 2), q_k = (x - mu_k)^T P (x - mu_k),
-// of K elliptical Gaussians of one shape on a constant, with parameters
-// [B, P_11, P_12, P_22, then per Gaussian a, mu_x, mu_y]; and its
-// Levenberg-Marquardt fit. The spot and the aux's print share a shape (one
-// beam on one surface, seen from nearly one place), which keeps the pair
+// Where the aux's print of a spot lies: the aux sees the spot at nearly
+// the same image pixel (the lasers move with the camera), which the
+// alignment maps to centre + offset in the ROI; the range changed a little
+// between the frames, which moves it along the beam's image by some s.
+struct PrintGeometry {
+  Eigen::Vector2d offset = Eigen::Vector2d::Zero();
+  Eigen::Vector2d along = Eigen::Vector2d::UnitX();  // unit
+};
+
+// The model B + a exp(-q(x - mu) / 2) [+ a' exp(-q(x - mu') / 2)],
+// q(d) = d^T P d, of the spot [and the aux's print, mu' = mu + offset +
+// s along] on a constant, with parameters [B, P_11, P_12, P_22, a, mu_x,
+// mu_y [, a', s]]; and its Levenberg-Marquardt fit. The spot and its print
+// share a shape (one beam on one surface, seen from nearly one place) and
+// the print's place follows the spot's up to s: that keeps the pair
 // determined when they overlap. Fixed sizes keep the normal equations on
 // the stack.
-template <int K>
-struct GaussiansFit {
-  static constexpr int kParams = 4 + 3 * K;
+template <bool kWithPrint>
+struct SpotFit {
+  static constexpr int kParams = kWithPrint ? 9 : 7;
   using Vector = Eigen::Matrix<double, kParams, 1>;
   using Matrix = Eigen::Matrix<double, kParams, kParams>;
 
-  static double Value(const Vector& theta, const Eigen::Vector2d& x,
-                      Vector* jacobian) {
-    const double p11 = theta(1);
-    const double p12 = theta(2);
-    const double p22 = theta(3);
+  PrintGeometry geometry;
+
+  // The print's centre at theta.
+  Eigen::Vector2d PrintMean(const Vector& theta) const {
+    return theta.template segment<2>(5) + geometry.offset +
+           theta(kParams - 1) * geometry.along;
+  }
+
+  double Value(const Vector& theta, const Eigen::Vector2d& x,
+               Vector* jacobian) const {
+    Eigen::Matrix2d precision;
+    precision << theta(1), theta(2), theta(2), theta(3);
     double value = theta(0);
     jacobian->template head<4>() << 1.0, 0.0, 0.0, 0.0;
-    for (int k = 4; k < kParams; k += 3) {
-      const double a = theta(k);
-      const double dx = x.x() - theta(k + 1);
-      const double dy = x.y() - theta(k + 2);
-      const double q = p11 * dx * dx + 2.0 * p12 * dx * dy + p22 * dy * dy;
-      const double g = q < 80.0 ? std::exp(-0.5 * q) : 0.0;
+    // a exp(-q(x - mean) / 2), adding its derivatives by the shape; returns
+    // a g P (x - mean), its derivative by the mean.
+    const auto add = [&](double a, const Eigen::Vector2d& mean, double* g_out) {
+      const Eigen::Vector2d d = x - mean;
+      const Eigen::Vector2d pd = precision * d;
+      const double q = d.dot(pd);
+      // Single precision is ample for the model and twice as fast; the fit
+      // spends most of its time here.
+      const double g = q < 80.0 ? std::exp(static_cast<float>(-0.5 * q)) : 0.0;
       const double ag = a * g;
       value += ag;
-      (*jacobian)(k) = g;
-      (*jacobian)(k + 1) = ag * (p11 * dx + p12 * dy);
-      (*jacobian)(k + 2) = ag * (p12 * dx + p22 * dy);
-      (*jacobian)(1) -= 0.5 * ag * dx * dx;
-      (*jacobian)(2) -= ag * dx * dy;
-      (*jacobian)(3) -= 0.5 * ag * dy * dy;
+      (*jacobian)(1) -= 0.5 * ag * d.x() * d.x();
+      (*jacobian)(2) -= ag * d.x() * d.y();
+      (*jacobian)(3) -= 0.5 * ag * d.y() * d.y();
+      *g_out = g;
+      return Eigen::Vector2d(ag * pd);
+    };
+    double g = 0.0;
+    const Eigen::Vector2d by_mean =
+        add(theta(4), theta.template segment<2>(5), &g);
+    (*jacobian)(4) = g;
+    jacobian->template segment<2>(5) = by_mean;
+    if constexpr (kWithPrint) {
+      const Eigen::Vector2d by_print_mean = add(theta(7), PrintMean(theta), &g);
+      (*jacobian)(7) = g;
+      jacobian->template segment<2>(5) += by_print_mean;
+      (*jacobian)(8) = by_print_mean.dot(geometry.along);
     }
     return value;
   }
@@ -584,8 +703,8 @@ struct GaussiansFit {
   }
 
   // Cost, J^T J and J^T r at theta; false if not finite.
-  static bool Evaluate(const FitSamples& samples, const Vector& theta,
-                       double* cost, Matrix* normal, Vector* gradient) {
+  bool Evaluate(const FitSamples& samples, const Vector& theta, double* cost,
+                Matrix* normal, Vector* gradient) const {
     *cost = 0.0;
     normal->setZero();
     gradient->setZero();
@@ -594,41 +713,42 @@ struct GaussiansFit {
       const double residual = Value(theta, samples.xs[i], &row) - samples.ys[i];
       if (residual * samples.bounds[i] > 0.0) continue;  // bound respected
       *cost += residual * residual;
-      normal->noalias() += row * row.transpose();
+      // The upper triangle only; mirrored below.
+      for (int c = 0; c < kParams; ++c) {
+        for (int r = 0; r <= c; ++r) (*normal)(r, c) += row(r) * row(c);
+      }
       *gradient += residual * row;
     }
+    *normal = normal->template selfadjointView<Eigen::Upper>();
     return std::isfinite(*cost);
   }
 
-  // Levenberg-Marquardt from theta; false if the start is not finite.
-  static bool Fit(const FitSamples& samples, Vector* theta) {
+  // Levenberg-Marquardt from theta; false if the start is not finite. It
+  // stops once a step moves the centre by less than 1e-3 px (far below any
+  // noise) and the other parameters by less than 1e-4 of themselves, or
+  // barely lowers the cost.
+  bool Fit(const FitSamples& samples, Vector* theta) const {
     constexpr int kMaxIterations = 50;
     double cost;
     Matrix normal;
     Vector gradient;
     if (!Evaluate(samples, *theta, &cost, &normal, &gradient)) return false;
-    static std::atomic<long> evals{0}, fits{0}, samp{0};
-    struct Rep {
-      ~Rep() {
-        if (getenv("SDCNT"))
-          fprintf(stderr, "fits %ld evals %ld samples %ld\n", fits.load(),
-                  evals.load(), samp.load());
-      }
-    };
-    static Rep rep;
-    ++fits;
-    samp += samples.xs.size();
     double lambda = 1e-3;
     for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-      bool improved = false;
-      while (lambda < 1e10) {
+      while (true) {
         Matrix damped = normal;
         damped.diagonal() += lambda * normal.diagonal().cwiseMax(1e-12);
-        const Vector candidate = *theta + damped.ldlt().solve(-gradient);
+        const Vector step = damped.ldlt().solve(-gradient);
+        bool small = step.template segment<2>(5).norm() < 1e-3;
+        for (int k = 1; k < kParams && small; ++k) {
+          if (k != 5 && k != 6) {
+            small = std::abs(step(k)) <= 1e-4 * std::abs((*theta)(k));
+          }
+        }
+        const Vector candidate = *theta + step;
         double candidate_cost;
         Matrix candidate_normal;
         Vector candidate_gradient;
-        ++evals;
         if (PrecisionPositive(candidate) &&
             Evaluate(samples, candidate, &candidate_cost, &candidate_normal,
                      &candidate_gradient) &&
@@ -639,66 +759,54 @@ struct GaussiansFit {
           normal = candidate_normal;
           gradient = candidate_gradient;
           lambda = std::max(lambda * 0.1, 1e-9);
-          improved = true;
-          if (getenv("SDLM")) fprintf(stderr, "LM it %d cost %.6g dec %.3g lambda %.3g mu %.4f %.4f\n", iteration, cost, decrease, lambda, (*theta)(4+1), (*theta)(4+2));
-          if (decrease <= 1e-8 * cost) return true;
+          if (small || decrease <= 1e-7 * cost) return true;
           break;
         }
+        if (small || lambda > 1e10) return true;
         lambda *= 10.0;
       }
-      if (!improved) return true;
     }
     return true;
   }
 };
 
-// Fits the spot (and the print, if given, with the spot's shape) to the
+// Fits the spot (and its print, if given, placed by `geometry`) to the
 // samples from `start` and `print`; false if the fit failed.
 bool FitSpot(const FitSamples& samples, double background,
-             const GaussianSpot& start, GaussianSpot* spot,
-             GaussianSpot* print) {
+             const GaussianSpot& start, const PrintGeometry& geometry,
+             GaussianSpot* spot, GaussianSpot* print) {
   const Eigen::Matrix2d start_precision = start.covariance.inverse();
-  const auto set = [&](auto* theta) {
-    (*theta)(0) = background;
-    (*theta)(1) = start_precision(0, 0);
-    (*theta)(2) = start_precision(0, 1);
-    (*theta)(3) = start_precision(1, 1);
-    (*theta)(4) = start.amplitude;
-    theta->template segment<2>(5) = start.mean;
-    if (print != nullptr) {
-      (*theta)(7) = print->amplitude;
-      theta->template segment<2>(8) = print->mean;
+  const auto run = [&](auto fit) {
+    using Fit = decltype(fit);
+    typename Fit::Vector theta;
+    theta(0) = background;
+    theta(1) = start_precision(0, 0);
+    theta(2) = start_precision(0, 1);
+    theta(3) = start_precision(1, 1);
+    theta(4) = start.amplitude;
+    theta.template segment<2>(5) = start.mean;
+    if constexpr (Fit::kParams == 9) {
+      theta(7) = print->amplitude;
+      theta(8) =
+          (print->mean - start.mean - geometry.offset).dot(geometry.along);
     }
-  };
-  const auto get = [](const auto& theta, int k) {
-    GaussianSpot gaussian;
-    gaussian.amplitude = theta(k);
-    gaussian.mean = theta.template segment<2>(k + 1);
+    if (!fit.Fit(samples, &theta)) return false;
     Eigen::Matrix2d precision;
     precision << theta(1), theta(2), theta(2), theta(3);
-    gaussian.covariance = precision.inverse();
-    return gaussian;
-  };
-  if (print == nullptr) {
-    GaussiansFit<1>::Vector theta;
-    set(&theta);
-    if (!GaussiansFit<1>::Fit(samples, &theta)) return false;
-    *spot = get(theta, 4);
+    spot->amplitude = theta(4);
+    spot->mean = theta.template segment<2>(5);
+    spot->covariance = precision.inverse();
+    if constexpr (Fit::kParams == 9) {
+      print->amplitude = theta(7);
+      print->mean = fit.PrintMean(theta);
+      print->covariance = spot->covariance;
+    }
     return true;
-  }
-  GaussiansFit<2>::Vector theta;
-  set(&theta);
-  if (!GaussiansFit<2>::Fit(samples, &theta)) return false;
-  *spot = get(theta, 4);
-  *print = get(theta, 7);
-  return true;
-}
-
-// a exp(-q / 2) of a Gaussian at x.
-double GaussianValue(const GaussianSpot& gaussian, const Eigen::Vector2d& x) {
-  const Eigen::Vector2d d = x - gaussian.mean;
-  return gaussian.amplitude *
-         std::exp(-0.5 * d.dot(gaussian.covariance.inverse() * d));
+  };
+  if (print == nullptr) return run(SpotFit<false>());
+  SpotFit<true> fit;
+  fit.geometry = geometry;
+  return run(fit);
 }
 
 // Adds the pixels under `window` to the fit samples: where `lower` is set
@@ -781,10 +889,11 @@ struct Run {
 // noise. `channel` is the signal's channel, < 0: the one in which the
 // component is brightest (V's channel on the spot).
 std::optional<Run> DetectInRoi(const Roi& roi, const cv::Mat& main, int sign,
-                               const Background& background,
-                               double extra_sigma, int channel,
+                               const Background& background, double extra_sigma,
+                               int channel,
                                const SpotDetectorOptions& options) {
-  const cv::Mat clean = CleanImage(roi, main, sign, options) - background.levels;
+  const cv::Mat clean =
+      CleanImage(roi, main, sign, options) - background.levels;
   // 7-8. Threshold above the background by the noise of this run: the
   // nominal robust σ and the low-passed added noise, in quadrature.
   const double sigma = std::hypot(background.value.sigma,
@@ -796,8 +905,7 @@ std::optional<Run> DetectInRoi(const Roi& roi, const cv::Mat& main, int sign,
                                 background.levels[2]});
   const double min_value = std::max(
       options.min_value,
-      std::min(background.value.median +
-                   options.value_threshold_sigmas * sigma,
+      std::min(background.value.median + options.value_threshold_sigmas * sigma,
                clip));
   const cv::Mat mask =
       ColourMask(clean, roi.valid, roi.colour, min_value, options);
@@ -807,12 +915,7 @@ std::optional<Run> DetectInRoi(const Roi& roi, const cv::Mat& main, int sign,
   const cv::Mat component =
       BestComponent(mask, clean, sign > 0 ? roi.beams : roi.aux_beams,
                     roi.laser, options, &rivals);
-  if (component.empty()) {
-    if (getenv("SDDBG") && extra_sigma == 0)
-      fprintf(stderr, "DBG sign %d: no component (thr %.2f bg %.2f sd %.2f)\n",
-              sign, min_value, background.value.median, background.value.sigma);
-    return std::nullopt;
-  }
+  if (component.empty()) return std::nullopt;
   Run run;
   run.channel = channel;
   if (run.channel < 0) {
@@ -845,39 +948,42 @@ std::optional<Run> DetectInRoi(const Roi& roi, const cv::Mat& main, int sign,
   const std::vector<double>& ys = samples.ys;
   if (ys.size() < 7) return std::nullopt;
 
-  // The start: background (a low quantile of the window), peak and
-  // intensity moments over the window.
+  // The start: background (a low quantile of the window), and the nominal
+  // fit or else the peak and intensity moments over the window.
   std::vector<double> sorted = ys;
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 4,
                    sorted.end());
   const double start_background = sorted[sorted.size() / 4];
-  double weight = 0.0;
-  double peak = 0.0;
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (size_t i = 0; i < ys.size(); ++i) {
-    const double w = std::max(ys[i] - start_background, 0.0);
-    weight += w;
-    mean += w * samples.xs[i];
-    peak = std::max(peak, w);
-  }
-  if (!(weight > 0.0)) return std::nullopt;
-  mean /= weight;
-  Eigen::Matrix2d second = Eigen::Matrix2d::Zero();
-  for (size_t i = 0; i < ys.size(); ++i) {
-    const double w = std::max(ys[i] - start_background, 0.0);
-    const Eigen::Vector2d d = samples.xs[i] - mean;
-    second += w * d * d.transpose();
-  }
   GaussianSpot start;
-  start.amplitude = peak;
-  start.mean = mean;
-  start.covariance = second / weight + 0.25 * Eigen::Matrix2d::Identity();
+  if (roi.nominal_spot) {
+    start = *roi.nominal_spot;
+  } else {
+    double weight = 0.0;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (size_t i = 0; i < ys.size(); ++i) {
+      const double w = std::max(ys[i] - start_background, 0.0);
+      weight += w;
+      mean += w * samples.xs[i];
+      start.amplitude = std::max(start.amplitude, w);
+    }
+    if (!(weight > 0.0)) return std::nullopt;
+    mean /= weight;
+    Eigen::Matrix2d second = Eigen::Matrix2d::Zero();
+    for (size_t i = 0; i < ys.size(); ++i) {
+      const Eigen::Vector2d d = samples.xs[i] - mean;
+      second += std::max(ys[i] - start_background, 0.0) * d * d.transpose();
+    }
+    start.mean = mean;
+    start.covariance = second / weight + 0.25 * Eigen::Matrix2d::Identity();
+  }
 
   run.extent = rivals | cv::boundingRect(run.window);
-  if (roi.nominal_spot) start = *roi.nominal_spot;
   if (sign > 0 && roi.nominal_print) {
+    const GaussianSpot& print = *roi.nominal_print;
+    const Eigen::Matrix2d precision = print.covariance.inverse();
     for (size_t i = 0; i < ys.size(); ++i) {
-      samples.ys[i] -= GaussianValue(*roi.nominal_print, samples.xs[i]);
+      const Eigen::Vector2d d = samples.xs[i] - print.mean;
+      samples.ys[i] -= print.amplitude * std::exp(-0.5 * d.dot(precision * d));
     }
   } else if (sign > 0 && roi.print) {
     // The aux's print joins the fit where it reaches the window, with its
@@ -898,7 +1004,12 @@ std::optional<Run> DetectInRoi(const Roi& roi, const cv::Mat& main, int sign,
       run.extent |= cv::boundingRect(roi.print_window);
     }
   }
-  if (!FitSpot(samples, start_background, start, &run.spot,
+  PrintGeometry geometry;
+  if (run.print) {
+    geometry.offset = AuxView(roi, start.mean) - start.mean;
+    geometry.along = DirectionNear(roi.beams[roi.laser], start.mean);
+  }
+  if (!FitSpot(samples, start_background, start, geometry, &run.spot,
                run.print ? &*run.print : nullptr)) {
     return std::nullopt;
   }
@@ -915,23 +1026,8 @@ std::optional<Run> DetectInRoi(const Roi& roi, const cv::Mat& main, int sign,
       !(shape.eigenvalues()(1) <= max_extent) || spot.mean.x() < box.x ||
       spot.mean.x() > box.x + box.width || spot.mean.y() < box.y ||
       spot.mean.y() > box.y + box.height) {
-    if (getenv("SDDBG") && extra_sigma == 0)
-      fprintf(stderr,
-              "DBG bad fit sign %d a %.2f mean %.2f %.2f eig %.3f %.3f box %d "
-              "%d %d %d print %d\n",
-              sign, spot.amplitude, spot.mean.x(), spot.mean.y(),
-              shape.eigenvalues()(0), shape.eigenvalues()(1), box.x, box.y,
-              box.width, box.height, (int)run.print.has_value());
     return std::nullopt;
   }
-  if (getenv("SDDBG") && extra_sigma == 0)
-    fprintf(stderr,
-            "DBG ok sign %d ch %d a %.2f mean %.2f %.2f (img %.2f %.2f) eig "
-            "%.3f %.3f n %zu print %d\n",
-            sign, run.channel, spot.amplitude, spot.mean.x(), spot.mean.y(),
-            spot.mean.x() + roi.rect.x, spot.mean.y() + roi.rect.y,
-            shape.eigenvalues()(0), shape.eigenvalues()(1), samples.xs.size(),
-            (int)run.print.has_value());
   return run;
 }
 
@@ -1025,8 +1121,9 @@ double NoiseFromImage(const std::vector<Roi>& rois) {
 }
 
 // §5.4 with the aux: robust σ of the aligned, matched difference in the
-// laser's weakest channel, divided by √2 when both frames are equally
-// noisy; the median over the ROIs.
+// laser's weakest channel; when both frames are equally noisy, that is
+// σ sqrt(1 + g^2) with g the aligned aux's noise gain. The median over the
+// ROIs.
 double NoiseFromDifference(const std::vector<Roi>& rois,
                            const SpotDetectorOptions& options) {
   std::vector<double> sigmas;
@@ -1034,8 +1131,10 @@ double NoiseFromDifference(const std::vector<Roi>& rois,
     if (!roi.problem.empty() || roi.aux.empty()) continue;
     const cv::Mat difference = Channel(roi.main, roi.colour.weakest) -
                                Channel(roi.aux, roi.colour.weakest);
-    sigmas.push_back(RobustStats(difference, roi.valid).sigma /
-                     (options.noise_difference_halved ? std::sqrt(2.0) : 1.0));
+    const double sigma = RobustStats(difference, roi.valid).sigma;
+    sigmas.push_back(options.aux_equally_noisy
+                         ? sigma / std::sqrt(1.0 + Square(roi.aux_noise_gain))
+                         : sigma);
   }
   if (sigmas.empty()) return -1.0;
   std::nth_element(sigmas.begin(), sigmas.begin() + sigmas.size() / 2,
@@ -1082,7 +1181,7 @@ std::vector<Roi> PredictRois(const cv::Mat& image, const Camera& camera,
   for (size_t l = 0; l < setup.lasers.size(); ++l) {
     Roi& roi = rois[l];
     roi.laser = l;
-    roi.colour = ColourOf(setup.lasers[l], options.min_saturation);
+    roi.colour = ColourOf(setup.lasers[l]);
     const std::vector<Eigen::Vector2d>& beam = beams[l];
     cv::Rect rect;
     if (!beam.empty()) {
@@ -1128,49 +1227,17 @@ std::vector<Roi> PredictRois(const cv::Mat& image, const Camera& camera,
 // print and the nominal detection.
 std::optional<Run> PrepareRoi(const cv::Mat& image, const cv::Mat& aux,
                               const SpotDetectorOptions& options, Roi* roi) {
-  const double t0 = cv::getTickCount();
   if (options.texture_removal && !aux.empty()) {
     AlignAux(image, aux, options, roi);
   }
-  if (getenv("SDT"))
-    fprintf(stderr, "align %.1f ms roi %dx%d\n",
-            (cv::getTickCount() - t0) / cv::getTickFrequency() * 1e3,
-            roi->rect.width, roi->rect.height);
-  const int reach = static_cast<int>(std::ceil(3.0 * options.lowpass_sigma_px));
-  const cv::Mat spread = cv::getStructuringElement(
-      cv::MORPH_ELLIPSE, cv::Size(2 * reach + 1, 2 * reach + 1));
-  const auto clipped = [&](const cv::Mat& levels, int c) {
-    cv::Mat mask;
-    cv::compare(Channel(levels, c), options.saturation_level, mask, cv::CMP_GE);
-    cv::dilate(mask, mask, spread);
-    return mask;
-  };
   for (int c = 0; c < 3; ++c) {
-    roi->clipped_main[c] = clipped(roi->main, c);
-    if (!roi->aux.empty()) roi->clipped_aux[c] = clipped(roi->aux, c);
+    roi->clipped_main[c] = Clipped(roi->main, c, options);
   }
-  roi->background = MeasureBackground(CleanImage(*roi, roi->main, 1, options),
-                                      roi->valid);
-  if (getenv("SDIMG")) {
-    static std::atomic<int> k{0};
-    const int id = k++;
-    cv::Mat out;
-    roi->main.convertTo(out, CV_8UC3);
-    cv::imwrite("/tmp/sd/roi" + std::to_string(id) + "_main.png", out);
-    if (!roi->aux.empty()) {
-      roi->aux.convertTo(out, CV_8UC3);
-      cv::imwrite("/tmp/sd/roi" + std::to_string(id) + "_aux.png", out);
-      cv::Mat d = CleanImage(*roi, roi->main, 1, options);
-      d.convertTo(out, CV_8UC3, 4.0);
-      cv::imwrite("/tmp/sd/roi" + std::to_string(id) + "_pos.png", out);
-      d = CleanImage(*roi, roi->main, -1, options);
-      d.convertTo(out, CV_8UC3, 4.0);
-      cv::imwrite("/tmp/sd/roi" + std::to_string(id) + "_neg.png", out);
-    }
-  }
+  roi->background =
+      MeasureBackground(CleanImage(*roi, roi->main, 1, options), roi->valid);
   if (!roi->aux.empty()) {
-    roi->print_background = MeasureBackground(
-        CleanImage(*roi, roi->main, -1, options), roi->valid);
+    roi->print_background =
+        MeasureBackground(CleanImage(*roi, roi->main, -1, options), roi->valid);
     const std::optional<Run> print = DetectInRoi(
         *roi, roi->main, -1, roi->print_background, 0.0, -1, options);
     if (print) {
@@ -1458,11 +1525,11 @@ std::vector<DetectedSpot> DetectBrightestPixel(
     for (int r = 0; r < roi.main.rows; ++r) {
       for (int c = 0; c < roi.main.cols; ++c) {
         const Eigen::Vector2d centre(c + 0.5, r + 0.5);
-        if (!mask.at<uint8_t>(r, c) ||
+        const double value = roi.main.at<cv::Vec3f>(r, c)[roi.colour.dominant];
+        if (value < brightest || !mask.at<uint8_t>(r, c) ||
             !OnOwnBeam(centre, roi.beams, roi.laser, options.roi_margin_px)) {
           continue;
         }
-        const double value = roi.main.at<cv::Vec3f>(r, c)[roi.colour.dominant];
         if (value > brightest) {
           brightest = value;
           sum.setZero();

@@ -86,11 +86,12 @@ struct SpotDetectorOptions {
   double min_detection_rate = 0.80;
 
   // Per-pixel noise σ in levels; < 0: estimated (§5.4) from the image and
-  // its auxiliary (robust σ of their aligned difference, divided by √2 when
-  // noise_difference_halved: both frames equally noisy), or from the image
+  // its auxiliary (robust σ of their aligned difference, with the aux as
+  // noisy as the image when aux_equally_noisy, e.g. consecutive frames, or
+  // noise-free otherwise, e.g. an average of frames), or from the image
   // alone (robust σ of its second differences) without one.
   double noise_sigma = -1.0;
-  bool noise_difference_halved = true;
+  bool aux_equally_noisy = true;
 
   // Threads for the ROIs and Monte Carlo iterations (<= 0: all cores). The
   // result does not depend on it.

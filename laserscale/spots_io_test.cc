@@ -116,9 +116,7 @@ TEST(SpotsJson, ReadingRejectsBadFilesNamingImageAndLaser) {
               "laser L1 listed twice");
   ExpectError(ReplaceFirst(text, "cam1/L00005.png", "L00002.png"),
               "images[1] \"L00002.png\": image listed twice");
-  ExpectError(ReplaceFirst(ReplaceFirst(text, "\"detected\": true",
-                                        "\"detected\": false"),
-                           "", ""),
+  ExpectError(ReplaceFirst(text, "\"detected\": true", "\"detected\": false"),
               "(laser L1): stable but not detected");
   EXPECT_THROW(ReadSpotsJson("/nonexistent/spots.json"), Error);
 }
