@@ -6,45 +6,25 @@
 // record for bench/results/.
 //
 //   spot_detector_bench OUT.json [--images N]
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <string>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
+#include "bench/wall_clock.h"
 #include "colmap_plugins/mesh/ray_caster.h"
 #include "colmap_plugins/util/file.h"
 #include "laserscale/spot_detector.h"
 #include "sim/generate.h"
 #include "sim/laser_images.h"
 
-namespace {
-
-// Process CPU time: with other work on the machine, wall time measures
-// the machine's load as much as the detector.
-double CpuSeconds() {
-  timespec time;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &time);
-  return static_cast<double>(time.tv_sec) + 1e-9 * time.tv_nsec;
-}
-
-double Now() {
-  return std::chrono::duration<double>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
   if (argc != 2 && !(argc == 4 && std::string(argv[2]) == "--images")) {
     std::fprintf(stderr, "usage: spot_detector_bench OUT.json [--images N]\n");
     return 2;
   }
-  if (getenv("CVT")) cv::setNumThreads(atoi(getenv("CVT")));
   const size_t num_images = argc == 4 ? std::stoul(argv[3]) : 4;
   using namespace uw;
   const sim::SimConfig config;
@@ -88,8 +68,8 @@ int main(int argc, char** argv) {
     SpotDetectorOptions options;
     options.num_threads = static_cast<int>(threads);
     int stable = 0;
-    const double start = Now();
-    const double cpu_start = CpuSeconds();
+    const double start = uw::bench::WallSeconds();
+    const double cpu_start = uw::bench::CpuSeconds();
     for (size_t i = 0; i < images.size(); ++i) {
       for (const DetectedSpot& spot :
            DetectSpots(images[i].image, images[i].aux, config.camera,
@@ -97,8 +77,9 @@ int main(int argc, char** argv) {
         stable += spot.stable ? 1 : 0;
       }
     }
-    const double per_image = (Now() - start) / images.size();
-    const double cpu_per_image = (CpuSeconds() - cpu_start) / images.size();
+    const double per_image = (uw::bench::WallSeconds() - start) / images.size();
+    const double cpu_per_image =
+        (uw::bench::CpuSeconds() - cpu_start) / images.size();
     if (threads == 1) one_thread = per_image;
     std::printf(
         "[spot_detector_bench] %zu images, %u thread(s): %.3f s per image, "

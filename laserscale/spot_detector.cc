@@ -713,13 +713,9 @@ struct SpotFit {
       const double residual = Value(theta, samples.xs[i], &row) - samples.ys[i];
       if (residual * samples.bounds[i] > 0.0) continue;  // bound respected
       *cost += residual * residual;
-      // The upper triangle only; mirrored below.
-      for (int c = 0; c < kParams; ++c) {
-        for (int r = 0; r <= c; ++r) (*normal)(r, c) += row(r) * row(c);
-      }
+      normal->noalias() += row * row.transpose();
       *gradient += residual * row;
     }
-    *normal = normal->template selfadjointView<Eigen::Upper>();
     return std::isfinite(*cost);
   }
 
@@ -1596,12 +1592,16 @@ const cv::Scalar kColourProblem(40, 40, 255);
 // Draws one spot's marks at `zoom` with `origin` at the canvas corner.
 void DrawSpot(cv::Mat* canvas, const DetectedSpot& spot,
               const Eigen::Vector2d& origin, double zoom) {
-  cv::Mat faint = canvas->clone();
-  for (const auto& [centre, covariance] : spot.iterations) {
-    cv::circle(faint, ToPoint(centre, origin, zoom), std::max(1, int(zoom / 4)),
-               kColourIteration, -1, cv::LINE_AA);
+  if (!spot.iterations.empty()) {
+    // Half-transparent, so that the cloud does not hide the spot.
+    cv::Mat dots = canvas->clone();
+    for (const auto& [centre, covariance] : spot.iterations) {
+      cv::circle(dots, ToPoint(centre, origin, zoom),
+                 std::max(1, static_cast<int>(zoom / 4)), kColourIteration, -1,
+                 cv::LINE_AA);
+    }
+    cv::addWeighted(dots, 0.5, *canvas, 0.5, 0.0, *canvas);
   }
-  cv::addWeighted(faint, 0.5, *canvas, 0.5, 0.0, *canvas);
   const cv::Scalar marker = spot.stable ? kColour68 : kColourProblem;
   if (spot.stable) {
     DrawEllipse(canvas, spot.pixel, spot.covariance, kRadius68, origin, zoom,
@@ -1666,10 +1666,9 @@ cv::Mat DrawSpotOverlay(const cv::Mat& image,
     const DetectedSpot& spot = *located[i];
     const int x0 = static_cast<int>(std::floor(spot.pixel.x())) - kCrop / 2;
     const int y0 = static_cast<int>(std::floor(spot.pixel.y())) - kCrop / 2;
-    cv::Mat crop;
     const cv::Rect want(x0, y0, kCrop, kCrop);
     const cv::Rect have = want & cv::Rect(0, 0, source.cols, source.rows);
-    crop = cv::Mat(kCrop, kCrop, CV_8UC3, cv::Scalar::all(0));
+    cv::Mat crop(kCrop, kCrop, CV_8UC3, cv::Scalar::all(0));
     if (have.area() > 0) {
       source(have).copyTo(
           crop(cv::Rect(have.x - x0, have.y - y0, have.width, have.height)));

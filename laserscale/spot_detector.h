@@ -29,17 +29,18 @@ struct SpotDetectorOptions {
   // 1. ROI: each beam's points at depths (camera z) from min_range_m to
   // max_range_m, projected; their bounding box grown by roi_margin_px. A
   // spot is accepted only within roi_margin_px of that projected segment
-  // (calibration error plus spot radius), which also tells the lasers apart.
+  // (calibration error plus spot radius) and no nearer another beam's,
+  // which also tells the lasers apart.
   double min_range_m = 1.0;
   double max_range_m = 6.0;
   int roi_margin_px = 24;
 
   // 2-5. Texture removal with the auxiliary image: the ROI is found in it
   // by FFT normalised cross-correlation within aux_search_px of its place
-  // (the camera moved between the frames), refined by an ECC homography,
-  // matched per channel by histogram, and subtracted. Below
-  // min_alignment_ncc the texture is not removed in that ROI (the aux does
-  // not show the same scene).
+  // (the camera moved between the frames), refined by an ECC homography
+  // (at most ecc_iterations), matched per channel by histogram, and
+  // subtracted. Below min_alignment_ncc the texture is not removed in that
+  // ROI (the aux does not show the same scene).
   bool texture_removal = true;
   int aux_search_px = 64;
   double min_alignment_ncc = 0.5;
@@ -48,11 +49,15 @@ struct SpotDetectorOptions {
   // 6. Gaussian low-pass against noise and compression artefacts.
   double lowpass_sigma_px = 1.0;
 
-  // 7. HSV threshold: hue within hue_tolerance_deg of the laser colour's hue
-  // (red wraps at 0/360), saturation >= min_saturation (hue is meaningless
-  // for greys), value >= the background level + value_threshold_sigmas
-  // robust standard deviations of the laser's colour channel in the ROI (and
-  // >= min_value levels).
+  // 7. HSV threshold on the increments over the ROI's median (per channel)
+  // of the texture-removed image (of the image without an aux): V >= the
+  // increments' median + value_threshold_sigmas robust σ (the nominal one
+  // and the Monte Carlo noise in quadrature; and >= min_value levels). The
+  // hue test (within hue_tolerance_deg of the laser colour's hue, red
+  // wrapping at 0/360, for saturation >= min_saturation) is off by default:
+  // in uwsim's water a red laser's green and blue leak outlive its red, so
+  // its spots turn from red at 1.5 m to green at 4 m (docs). On real red
+  // lasers, whose light stays red, 30-40 deg and 0.3 reject other colours.
   double hue_tolerance_deg = 180.0;
   double min_saturation = 0.0;
   double value_threshold_sigmas = 4.0;
@@ -60,14 +65,17 @@ struct SpotDetectorOptions {
 
   // 8-9. Opening with a disc of opening_radius_px (removes isolated noise
   // pixels), 8-connected components of min_area_px to max_area_px pixels;
-  // per ROI the one with the largest summed V near the beam's image wins.
+  // per ROI the one with the largest summed V on the laser's beam wins.
   int opening_radius_px = 1;
   int min_area_px = 3;
   int max_area_px = 4000;
 
-  // 11. The Gaussian is fitted over the component grown by fit_margin_px
-  // (its tails and background); pixels at or above saturation_level in the
-  // laser's channel are left out (a clipped top is not Gaussian).
+  // 10-11. The Gaussian is fitted to the channel in which the component is
+  // brightest (V's channel on the spot) over the component grown by
+  // fit_margin_px (its tails and background). Pixels at or above
+  // saturation_level, and their low-passed neighbours, bound the fit
+  // instead of fixing it (censored least squares), so a clipped top still
+  // tells how high the spot is.
   int fit_margin_px = 3;
   double saturation_level = 250.0;
 
@@ -79,9 +87,9 @@ struct SpotDetectorOptions {
   double confidence = 0.95;
 
   // LSD-MC (§5.3): iterations with i.i.d. Gaussian noise of noise_sigma
-  // added to each channel of the ROI (0: the nominal detection alone, its
-  // covariance Σc); stable iff detected in at least min_detection_rate of
-  // them (thesis: 80 %).
+  // added to each channel of the image around the nominal detection (0:
+  // the nominal detection alone, its covariance Σc); stable iff detected in
+  // at least min_detection_rate of them (thesis: 80 %).
   int monte_carlo_iterations = 100;
   double min_detection_rate = 0.80;
 
@@ -133,10 +141,12 @@ std::vector<DetectedSpot> DetectSpots(const cv::Mat& image, const cv::Mat& aux,
                                       const SpotDetectorOptions& options,
                                       uint64_t seed);
 
-// Baseline: the centre of the brightest pixel (in the laser's colour
-// channel) among the pixels of the laser's hue in each ROI near the beam's
-// image; no texture removal, no fit, no Monte Carlo. Its covariance is that
-// of a uniform position within the pixel, I/12.
+// Baseline: the brightest pixel in the laser's colour channel among the
+// ROI's pixels that pass the hue test (options' hue_tolerance_deg and
+// min_saturation) on the laser's beam; the centre of all of them where
+// several tie (a clipped spot is a plateau). No texture removal, no fit, no
+// Monte Carlo; the covariance is that of a uniform position within a pixel,
+// I/12.
 std::vector<DetectedSpot> DetectBrightestPixel(
     const cv::Mat& image, const Camera& camera, const LaserSetup& setup,
     const SpotDetectorOptions& options);

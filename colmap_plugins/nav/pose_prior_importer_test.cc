@@ -10,6 +10,8 @@
 #include <set>
 #include <sstream>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
@@ -40,10 +42,23 @@ struct Survey {
   std::string camera_flags;  // --mount, --lever_arm, --boresight of sim.json
 };
 
+// One survey per process: CTest runs each case as its own process, in
+// parallel, and a shared folder would be removed under another's feet.
+fs::path SurveyRoot() {
+  return fs::temp_directory_path() / "uw_pose_prior_importer_test" /
+         ("survey_" + std::to_string(::getpid()));
+}
+
+class SurveyCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override { fs::remove_all(SurveyRoot()); }
+};
+[[maybe_unused]] ::testing::Environment* const kSurveyCleanup =
+    ::testing::AddGlobalTestEnvironment(new SurveyCleanup);
+
 const Survey& TheSurvey() {
   static const Survey survey = [] {
-    const fs::path root =
-        fs::temp_directory_path() / "uw_pose_prior_importer_test" / "survey";
+    const fs::path root = SurveyRoot();
     fs::remove_all(root);
     sim::SimConfig config = sim::SmallSimConfig();
     config.survey_options.max_images = 8;
