@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <sstream>
 
@@ -81,6 +82,46 @@ std::string ReadFileToString(const std::filesystem::path& path) {
   std::ostringstream content;
   content << stream.rdbuf();
   return content.str();
+}
+
+bool IsImageFile(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return extension == ".png" || extension == ".jpg" || extension == ".jpeg" ||
+         extension == ".tif" || extension == ".tiff";
+}
+
+std::vector<std::string> ListImages(
+    const std::filesystem::path& images_dir, const std::string& image_list_path,
+    const std::function<bool(const std::string&)>& keep) {
+  std::vector<std::string> names;
+  if (!image_list_path.empty()) {
+    std::ifstream in(image_list_path);
+    if (!in) throw ErrorAt(image_list_path, ": cannot open");
+    std::string line;
+    while (std::getline(in, line)) {
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      if (!line.empty()) names.push_back(line);
+    }
+    if (names.empty()) throw ErrorAt(image_list_path, ": no images listed");
+    return names;
+  }
+  std::error_code error;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(images_dir, error)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_regular_file() && IsImageFile(entry.path()) &&
+        (!keep || keep(name))) {
+      names.push_back(name);
+    }
+  }
+  if (error) {
+    throw ErrorAt(images_dir.string(), ": cannot list: ", error.message());
+  }
+  if (names.empty()) throw ErrorAt(images_dir.string(), ": no images");
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 }  // namespace uw

@@ -26,4 +26,16 @@ void WriteFilesAtomically(const std::vector<PendingFile>& files, bool binary);
 // Reads a whole file; throws uw::Error naming the path if it cannot.
 std::string ReadFileToString(const std::filesystem::path& path);
 
+// Whether the name ends like an image file (.png .jpg .jpeg .tif .tiff, any
+// case).
+bool IsImageFile(const std::filesystem::path& path);
+
+// The images a command processes, named relative to images_dir: the
+// non-empty lines of image_list_path if given (as colmap's
+// --image_list_path), else every image file directly in images_dir for
+// which `keep` (if any) is true, sorted. Throws uw::Error when none.
+std::vector<std::string> ListImages(
+    const std::filesystem::path& images_dir, const std::string& image_list_path,
+    const std::function<bool(const std::string&)>& keep = nullptr);
+
 }  // namespace uw

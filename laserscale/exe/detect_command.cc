@@ -22,14 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool IsImageFile(const fs::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  return extension == ".png" || extension == ".jpg" || extension == ".jpeg" ||
-         extension == ".tif" || extension == ".tiff";
-}
-
 bool IsAuxName(const std::string& name) {
   return fs::path(name).stem().string().size() > 4 &&
          fs::path(name).stem().string().substr(
@@ -166,26 +158,9 @@ int RunDetect(int argc, char** argv) {
       camera.params = ParseParams(camera_params);
       CheckCameraModelParams(camera.model_id, camera.params.size());
     }
-    std::vector<std::string> names;
-    if (!image_list_path.empty()) {
-      std::ifstream in(image_list_path);
-      if (!in) throw ErrorAt(image_list_path, ": cannot open");
-      std::string line;
-      while (std::getline(in, line)) {
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (!line.empty()) names.push_back(line);
-      }
-    } else {
-      for (const auto& entry : fs::directory_iterator(images_dir)) {
-        const std::string name = entry.path().filename().string();
-        if (entry.is_regular_file() && IsImageFile(entry.path()) &&
-            !IsAuxName(name)) {
-          names.push_back(name);
-        }
-      }
-      std::sort(names.begin(), names.end());
-    }
-    if (names.empty()) throw ErrorAt(images_dir, ": no images");
+    const std::vector<std::string> names =
+        ListImages(images_dir, image_list_path,
+                   [](const std::string& name) { return !IsAuxName(name); });
     std::map<std::string, std::string> aux_of;
     if (aux != "auto" && aux != "none") {
       std::ifstream in(aux);

@@ -1,0 +1,42 @@
+// Calibration boards: what `uwcalib --board` describes, and where its
+// corners are on the board.
+//
+// Corners are numbered as mrcal numbers them (corners.vnl, mrcal's
+// calibration object): a grid of grid_width x grid_height points, row-major
+// with x fastest; point (i, j) lies at (i, j) * spacing on the board plane
+// z = 0. Metres.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace uw {
+
+enum class BoardKind {
+  // A chessboard, counted by its inner corners (OpenCV's patternSize).
+  kChessboard,
+};
+
+struct CalibrationBoard {
+  BoardKind kind = BoardKind::kChessboard;
+  int grid_width = 0;   // corners per row
+  int grid_height = 0;  // rows of corners
+  double spacing_m = 0.0;
+
+  int NumCorners() const { return grid_width * grid_height; }
+
+  // Corner positions on the board, mrcal's order.
+  std::vector<Eigen::Vector3d> CornersInBoard() const;
+
+  // The spec string that ParseBoard reads back, e.g. "chessboard:9x6:0.025".
+  std::string ToString() const;
+};
+
+// Parses a --board value:
+//   chessboard:COLSxROWS:SQUARE_M   inner corners per row x rows, square side
+// Throws uw::Error saying what was expected.
+CalibrationBoard ParseBoard(const std::string& spec);
+
+}  // namespace uw

@@ -1,0 +1,41 @@
+#include "calib/board.h"
+
+#include <gtest/gtest.h>
+
+#include "colmap_plugins/util/error.h"
+
+namespace uw {
+namespace {
+
+TEST(ParseBoard, ChessboardCornersAreMrcalsGrid) {
+  const CalibrationBoard board = ParseBoard("chessboard:9x6:0.025");
+  EXPECT_EQ(board.grid_width, 9);
+  EXPECT_EQ(board.grid_height, 6);
+  EXPECT_DOUBLE_EQ(board.spacing_m, 0.025);
+  const std::vector<Eigen::Vector3d> corners = board.CornersInBoard();
+  ASSERT_EQ(corners.size(), 54u);
+  // Row-major, x fastest: corner 10 is (1, 1).
+  EXPECT_TRUE(corners[10].isApprox(Eigen::Vector3d(0.025, 0.025, 0.0)));
+  EXPECT_TRUE(corners[53].isApprox(Eigen::Vector3d(0.2, 0.125, 0.0)));
+  EXPECT_EQ(ParseBoard(board.ToString()).spacing_m, board.spacing_m);
+  EXPECT_EQ(board.ToString(), "chessboard:9x6:0.025000000000000001");
+}
+
+TEST(ParseBoard, RejectsMalformedSpecsSayingWhatIsExpected) {
+  for (const char* spec :
+       {"", "chessboard", "chessboard:9x6", "chessboard:9:0.02",
+        "chessboard:9x6:0", "chessboard:9x6:-1", "chessboard:9x6:abc",
+        "chessboard:1x6:0.02", "chessboard:9.5x6:0.02", "chessboard:9x6:nan",
+        "chessboard:9x6:0.02:1", "checkerboard:9x6:0.02"}) {
+    try {
+      ParseBoard(spec);
+      ADD_FAILURE() << "accepted '" << spec << "'";
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find("--board"), std::string::npos)
+          << error.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace uw

@@ -1,0 +1,23 @@
+// uwcalib: mrcal-style camera calibration sessions. Like `colmap`, the
+// first argument names the command and the rest are its flags.
+#include "calib/exe/commands.h"
+#include "colmap_plugins/exe/command.h"
+
+int main(int argc, char** argv) {
+  return uw::DispatchSubcommand(
+      "uwcalib: camera calibration from board images, with mrcal.\n\n"
+      "Usage:\n  uwcalib <command> [--flag value ...]\n"
+      "  uwcalib <command> --help\n\n"
+      "Example (docs/uwcalib.md):\n"
+      "  uwcalib detect    --board chessboard:9x6:0.025 --images calib "
+      "--out corners.vnl\n"
+      "  uwcalib calibrate --board chessboard:9x6:0.025 --corners "
+      "corners.vnl --lens_model LENSMODEL_OPENCV8 --focal 850 --out cal\n",
+      {
+          {"detect", uw::RunCalibDetect,
+           "find the board's corners in calibration images (corners.vnl)"},
+          {"calibrate", uw::RunCalibrate,
+           "calibrate a camera from corners.vnl with mrcal (.cameramodel)"},
+      },
+      argc, argv);
+}

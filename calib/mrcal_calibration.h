@@ -1,0 +1,80 @@
+// Camera calibration from board observations with mrcal's C library
+// (libmrcal 2.2): the solve mrcal-calibrate-cameras runs, driven from C++.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "calib/board.h"
+#include "calib/corners_vnl.h"
+#include "colmap_plugins/scene/model.h"
+
+namespace uw {
+
+struct MrcalCalibrationOptions {
+  // mrcal's lens model name, e.g. LENSMODEL_OPENCV8 (see mrcal's docs).
+  std::string lens_model = "LENSMODEL_OPENCV8";
+  double focal_px = 0.0;  // seed focal length, pixels (required)
+  int image_width = 0;    // pixels (required)
+  int image_height = 0;
+  // The final solve's terms, as mrcal-calibrate-cameras runs them by default.
+  bool regularization = true;
+  bool outlier_rejection = true;
+  bool calobject_warp = true;
+
+  // Throws uw::Error naming the first bad field.
+  void Check() const;
+};
+
+struct MrcalCalibration {
+  std::string lens_model;
+  std::vector<double> intrinsics;  // fx, fy, cx, cy, distortions (mrcal's)
+  int image_width = 0;
+  int image_height = 0;
+
+  // Per board observation used (images where a board was found, file order).
+  std::vector<std::string> images;
+  std::vector<Rigid3d> cam_from_board;
+  // Per used observation and corner: reprojection residual (pixels,
+  // projected minus observed), and whether the solve threw the corner out.
+  std::vector<std::vector<Eigen::Vector2d>> residuals_px;
+  std::vector<std::vector<bool>> outliers;
+
+  double rms_px = 0.0;  // mrcal's RMS of the final solve's measurements
+  int num_corners_observed = 0;  // found by the detector
+  int num_outliers = 0;          // thrown out by the solve
+  Eigen::Vector2d calobject_warp = Eigen::Vector2d::Zero();  // x2, y2 (m)
+};
+
+// Seeds (stereographic core from focal_px, board poses by PnP of the
+// stereographic unprojections, as mrcal's seed_stereographic does) and
+// solves in mrcal-calibrate-cameras' stages: geometry, + core, then the
+// lens model with regularization and outlier rejection, then the board's
+// warp. One camera; images without a board are skipped. Throws uw::Error
+// when fewer boards than the lens model needs were found or mrcal fails.
+MrcalCalibration CalibrateWithMrcal(
+    const std::vector<BoardObservation>& observations,
+    const CalibrationBoard& board, const MrcalCalibrationOptions& options);
+
+// The .cameramodel text mrcal reads (mrcal's Python-dict layout; every
+// number to 17 significant digits). `comments` become '#' lines.
+std::string FormatCameraModel(const std::string& lens_model,
+                              const std::vector<double>& intrinsics,
+                              int image_width, int image_height,
+                              const std::vector<std::string>& comments);
+
+struct MrcalCameraModel {
+  std::string lens_model;
+  std::vector<double> intrinsics;
+  int image_width = 0;
+  int image_height = 0;
+  Eigen::Matrix<double, 6, 1> rt_cam_ref = Eigen::Matrix<double, 6, 1>::Zero();
+};
+
+// Reads a .cameramodel with mrcal's own parser. Throws uw::Error naming
+// the file.
+MrcalCameraModel ReadCameraModel(const std::string& path);
+
+}  // namespace uw

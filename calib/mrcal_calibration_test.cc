@@ -1,0 +1,297 @@
+#include "calib/mrcal_calibration.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "calib/chessboard_detector.h"
+#include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/file.h"
+#include "colmap_plugins/util/random.h"
+#include "sim/board_images.h"
+#include "tests/support/process.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::FreshTestDir;
+using testing::Quoted;
+using testing::RunProcess;
+
+// The truth: COLMAP's OPENCV camera, i.e. mrcal's LENSMODEL_OPENCV4 with the
+// principal point 0.5 px lower (mrcal's pixel centres are at integers).
+Camera TrueCamera() {
+  Camera camera;
+  camera.model_id = CameraModelId::kOpenCV;
+  camera.width = 1024;
+  camera.height = 768;
+  camera.params = {850.0, 848.0, 515.3, 380.9, -0.11, 0.06, 0.0008, -0.0004};
+  return camera;
+}
+
+// Views of a board 0.4-0.9 m away, tilted up to 45 deg, with their exact
+// corners plus Gaussian noise: boards close enough to fill much of the image,
+// as mrcal's docs advise (at 0.5-1.2 m with a 10x8 board of 4 cm, 30 views
+// left the principal point 1.4 px off: the data, not the solver).
+std::vector<BoardObservation> NoisyViews(const Camera& camera,
+                                         const CalibrationBoard& board,
+                                         int num_views, double sigma_px,
+                                         uint64_t seed) {
+  const std::vector<Rigid3d> poses =
+      sim::RandomBoardPoses(camera, board, num_views, 0.4, 0.9, 45.0, seed);
+  SplitMix64Stream noise(seed + 1);
+  std::vector<BoardObservation> views;
+  for (size_t v = 0; v < poses.size(); ++v) {
+    BoardObservation view;
+    view.image = "frame" + std::to_string(100 + v) + ".png";
+    for (const Eigen::Vector3d& corner : board.CornersInBoard()) {
+      const Eigen::Vector2d truth =
+          camera.ImgFromCam(poses[v] * corner) - Eigen::Vector2d(0.5, 0.5);
+      view.pixels.push_back(truth + sigma_px * noise.GaussianPair());
+      view.weights.push_back(1.0);
+    }
+    views.push_back(view);
+  }
+  return views;
+}
+
+MrcalCalibrationOptions Options(const std::string& lens_model, double focal_px,
+                                int width, int height) {
+  MrcalCalibrationOptions options;
+  options.lens_model = lens_model;
+  options.focal_px = focal_px;
+  options.image_width = width;
+  options.image_height = height;
+  return options;
+}
+
+TEST(CalibrateWithMrcal, RecoversKnownIntrinsicsFromNoisyCorners) {
+  const Camera camera = TrueCamera();
+  const CalibrationBoard board = ParseBoard("chessboard:14x10:0.04");
+  const std::vector<BoardObservation> views =
+      NoisyViews(camera, board, 60, 0.3, 11);
+  const MrcalCalibrationOptions options =
+      Options("LENSMODEL_OPENCV4", 800.0, 1024, 768);
+  const MrcalCalibration result = CalibrateWithMrcal(views, board, options);
+  const std::vector<double>& k = result.intrinsics;
+  const std::vector<double>& t = camera.params;
+  std::printf(
+      "[ figures ] fx %.3f (%.3f) fy %.3f (%.3f) cx %.3f (%.3f) cy "
+      "%.3f (%.3f) k1 %.5f (%.5f) k2 %.5f (%.5f); RMS %.4f px for "
+      "0.3 px noise; %d outliers\n",
+      k[0], t[0], k[1], t[1], k[2], t[2] - 0.5, k[3], t[3] - 0.5, k[4], t[4],
+      k[5], t[5], result.rms_px, result.num_outliers);
+  EXPECT_NEAR(k[0] / t[0], 1.0, 1e-3);
+  EXPECT_NEAR(k[1] / t[1], 1.0, 1e-3);
+  EXPECT_NEAR(k[2], t[2] - 0.5, 0.5);
+  EXPECT_NEAR(k[3], t[3] - 0.5, 0.5);
+  EXPECT_NEAR(result.rms_px / 0.3, 1.0, 0.1);
+  EXPECT_EQ(result.images.size(), 60u);
+}
+
+// Runs Debian's mrcal-calibrate-cameras on `views` (written as corners.vnl)
+// and checks that CalibrateWithMrcal finds the same intrinsics and outliers.
+void ExpectSameAsMrcalTool(const std::vector<BoardObservation>& views,
+                           const CalibrationBoard& board,
+                           const MrcalCalibrationOptions& options,
+                           const std::string& glob) {
+  const fs::path dir = FreshTestDir("uw_mrcal_calibration_test");
+  const fs::path corners = dir / "corners.vnl";
+  WriteFilesAtomically({{corners,
+                         [&](std::ostream& out) {
+                           out << FormatCornersVnl(
+                               views, CornerWeightColumn::kLevel, {});
+                         }}},
+                       false);
+  char flags[512];
+  std::snprintf(flags, sizeof(flags),
+                " --lensmodel %s --focal %.17g --object-spacing %.17g"
+                " --object-width-n %d --object-height-n %d --imagersize %d %d",
+                options.lens_model.c_str(), options.focal_px, board.spacing_m,
+                board.grid_width, board.grid_height, options.image_width,
+                options.image_height);
+  const testing::ProcessResult tool =
+      RunProcess("cd " + Quoted(dir) +
+                     " && /usr/bin/python3 /usr/bin/mrcal-calibrate-cameras"
+                     " --corners-cache corners.vnl --outdir . " +
+                     flags + " '" + glob + "'",
+                 true);
+  ASSERT_EQ(tool.exit_code, 0) << tool.output;
+  const MrcalCameraModel theirs =
+      ReadCameraModel((dir / "camera-0.cameramodel").string());
+  const MrcalCalibration ours = CalibrateWithMrcal(views, board, options);
+  ASSERT_EQ(theirs.lens_model, options.lens_model);
+  ASSERT_EQ(theirs.intrinsics.size(), ours.intrinsics.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < ours.intrinsics.size(); ++i) {
+    const double a = ours.intrinsics[i];
+    const double b = theirs.intrinsics[i];
+    const double relative = std::abs(a - b) / std::max(std::abs(b), 1e-300);
+    worst = std::max(worst, relative);
+    EXPECT_LT(relative, 1e-4) << "intrinsic " << i << ": ours " << a
+                              << ", mrcal-calibrate-cameras " << b;
+  }
+  std::smatch match;
+  const std::regex noutliers("Noutliers: ([0-9]+) out of ([0-9]+)");
+  ASSERT_TRUE(std::regex_search(tool.output, match, noutliers)) << tool.output;
+  int missing = 0;
+  for (const BoardObservation& view : views) {
+    if (view.Found()) missing += board.NumCorners() - view.NumFoundCorners();
+  }
+  std::printf(
+      "[ figures ] vs mrcal-calibrate-cameras: worst relative "
+      "intrinsic difference %.2e; outliers %d (theirs %s, of which "
+      "%d missing on input); RMS %.4f px\n",
+      worst, ours.num_outliers, match[1].str().c_str(), missing, ours.rms_px);
+  EXPECT_EQ(ours.num_outliers + missing, std::stoi(match[1].str()));
+}
+
+TEST(CalibrateWithMrcal, SameSolutionAsMrcalCalibrateCamerasWithOutliers) {
+  const Camera camera = TrueCamera();
+  const CalibrationBoard board = ParseBoard("chessboard:14x10:0.04");
+  std::vector<BoardObservation> views = NoisyViews(camera, board, 30, 0.3, 5);
+  // Gross detector errors mrcal must throw out, and a corner not found.
+  views[3].pixels[17] += Eigen::Vector2d(6.0, -4.0);
+  views[8].pixels[40] += Eigen::Vector2d(-5.0, 5.0);
+  views[12].pixels[139] += Eigen::Vector2d(0.0, 8.0);
+  views[15].weights[5] = -1.0;
+  // The lens model of the truth: OPENCV8's rational terms are not
+  // determined by these views, and mrcal-calibrate-cameras' own random
+  // distortion seed then lands it in different places run by run.
+  const MrcalCalibrationOptions options =
+      Options("LENSMODEL_OPENCV4", 800.0, 1024, 768);
+  ExpectSameAsMrcalTool(views, board, options, "frame*.png");
+  const MrcalCalibration ours = CalibrateWithMrcal(views, board, options);
+  EXPECT_TRUE(ours.outliers[3][17]);
+  EXPECT_TRUE(ours.outliers[8][40]);
+  EXPECT_TRUE(ours.outliers[12][139]);
+  EXPECT_FALSE(ours.outliers[15][5]);  // missing is not an outlier
+}
+
+std::vector<BoardObservation> RealLeftViews() {
+  const fs::path dir =
+      fs::path(UW_REALDATA_DIR) / "opencv_chessboard_stereo_640x480";
+  const CalibrationBoard board = ParseBoard("chessboard:9x6:1");
+  std::vector<BoardObservation> views;
+  for (int n = 1; n <= 14; ++n) {
+    if (n == 10) continue;
+    char name[32];
+    std::snprintf(name, sizeof(name), "left%02d.jpg", n);
+    const cv::Mat image = cv::imread((dir / name).string());
+    if (image.empty()) throw Error(std::string("cannot read ") + name);
+    views.push_back(DetectChessboard(image, board, name));
+  }
+  return views;
+}
+
+TEST(CalibrateWithMrcal, RealChessboardLikeOpenCvAndLikeTheMrcalTool) {
+  const std::vector<BoardObservation> views = RealLeftViews();
+  const CalibrationBoard board = ParseBoard("chessboard:9x6:1");
+  const MrcalCalibrationOptions options =
+      Options("LENSMODEL_OPENCV5", 530.0, 640, 480);
+  const MrcalCalibration ours = CalibrateWithMrcal(views, board, options);
+
+  // OpenCV's calibrateCamera on the same corners (5 coefficients, as
+  // LENSMODEL_OPENCV5): its RMS is per corner (the 2D error's norm).
+  std::vector<std::vector<cv::Point3f>> object_points;
+  std::vector<std::vector<cv::Point2f>> image_points;
+  for (const BoardObservation& view : views) {
+    if (!view.Found()) continue;
+    object_points.emplace_back();
+    image_points.emplace_back();
+    const std::vector<Eigen::Vector3d> corners = board.CornersInBoard();
+    for (size_t k = 0; k < corners.size(); ++k) {
+      object_points.back().emplace_back(corners[k].x(), corners[k].y(), 0.f);
+      image_points.back().emplace_back(view.pixels[k].x(), view.pixels[k].y());
+    }
+  }
+  cv::Mat camera_matrix;
+  cv::Mat distortion;
+  std::vector<cv::Mat> rvecs;
+  std::vector<cv::Mat> tvecs;
+  const double opencv_rms =
+      cv::calibrateCamera(object_points, image_points, cv::Size(640, 480),
+                          camera_matrix, distortion, rvecs, tvecs);
+  double sum_squares = 0.0;
+  int count = 0;
+  for (const std::vector<Eigen::Vector2d>& residuals : ours.residuals_px) {
+    for (const Eigen::Vector2d& residual : residuals) {
+      sum_squares += residual.squaredNorm();
+      ++count;
+    }
+  }
+  const double our_rms = std::sqrt(sum_squares / count);
+  std::printf(
+      "[ figures ] left camera, %zu views: RMS per corner ours %.4f "
+      "px (all corners, %d outliers), OpenCV calibrateCamera %.4f px; "
+      "fx ours %.2f OpenCV %.2f\n",
+      object_points.size(), our_rms, ours.num_outliers, opencv_rms,
+      ours.intrinsics[0], camera_matrix.at<double>(0, 0));
+  EXPECT_EQ(object_points.size(), 13u);
+  EXPECT_LT(std::abs(our_rms / opencv_rms - 1.0), 0.10);
+  ExpectSameAsMrcalTool(views, board, options, "left*.jpg");
+}
+
+TEST(CalibrateWithMrcal, TooFewViewsAndBadOptionsAreErrors) {
+  const Camera camera = TrueCamera();
+  const CalibrationBoard board = ParseBoard("chessboard:10x8:0.04");
+  const std::vector<BoardObservation> views =
+      NoisyViews(camera, board, 2, 0.3, 3);
+  MrcalCalibrationOptions options =
+      Options("LENSMODEL_OPENCV8", 800.0, 1024, 768);
+  try {
+    CalibrateWithMrcal(views, board, options);
+    ADD_FAILURE() << "calibrated from 2 views";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("2 board views"),
+              std::string::npos)
+        << error.what();
+  }
+  options.lens_model = "LENSMODEL_FISHEYE9";
+  EXPECT_THROW(options.Check(), Error);
+  options.lens_model = "LENSMODEL_OPENCV4";
+  options.focal_px = 0.0;
+  EXPECT_THROW(options.Check(), Error);
+}
+
+TEST(CameraModelFile, MrcalReadsWhatWeWriteToTheLastBit) {
+  const fs::path dir = FreshTestDir("uw_mrcal_calibration_test");
+  const std::vector<double> intrinsics = {
+      851.123456789012,    849.5, 511.25, 383.0625,
+      -0.1234567890123e-3, 1e-9,  0.5,    -2.0};
+  const fs::path path = dir / "cam.cameramodel";
+  WriteFilesAtomically({{path,
+                         [&](std::ostream& out) {
+                           out << FormatCameraModel("LENSMODEL_OPENCV4",
+                                                    intrinsics, 1024, 768,
+                                                    {"test"});
+                         }}},
+                       false);
+  const MrcalCameraModel model = ReadCameraModel(path.string());
+  EXPECT_EQ(model.lens_model, "LENSMODEL_OPENCV4");
+  EXPECT_EQ(model.intrinsics, intrinsics);
+  EXPECT_EQ(model.image_width, 1024);
+  EXPECT_EQ(model.image_height, 768);
+  // And mrcal's Python reads it too.
+  const testing::ProcessResult python = RunProcess(
+      "/usr/bin/python3 -c \"import mrcal,sys; "
+      "m=mrcal.cameramodel(sys.argv[1]);"
+      " print(m.intrinsics()[0], repr(m.intrinsics()[1][0]))\" " +
+          Quoted(path),
+      true);
+  EXPECT_EQ(python.exit_code, 0) << python.output;
+  EXPECT_EQ(python.output, "LENSMODEL_OPENCV4 851.123456789012\n");
+  std::ofstream(dir / "bad.cameramodel") << "{ 'lensmodel': 'LENSMODEL_X' }";
+  EXPECT_THROW(ReadCameraModel((dir / "bad.cameramodel").string()), Error);
+}
+
+}  // namespace
+}  // namespace uw
