@@ -1,8 +1,11 @@
 #include "calib/mrcal_calibration.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include <Eigen/Geometry>
@@ -44,15 +47,51 @@ std::string Number(double value) {
   return buffer;
 }
 
-// One mrcal_optimize() call on the problem's current state.
+mrcal_pose_t PoseFromRigid(const Rigid3d& b_from_a) {
+  const Eigen::AngleAxisd rotation(b_from_a.rotation.normalized());
+  const Eigen::Vector3d r = rotation.angle() * rotation.axis();
+  mrcal_pose_t pose;
+  for (int i = 0; i < 3; ++i) {
+    pose.r.xyz[i] = r(i);
+    pose.t.xyz[i] = b_from_a.translation(i);
+  }
+  return pose;
+}
+
+Rigid3d RigidFromPose(const mrcal_pose_t& pose) {
+  Rigid3d rigid;
+  rigid.rotation = Eigen::Quaterniond(RotationFromRodrigues(pose.r));
+  rigid.translation = Eigen::Vector3d(pose.t.x, pose.t.y, pose.t.z);
+  return rigid;
+}
+
+Rigid3d Compose(const Rigid3d& c_from_b, const Rigid3d& b_from_a) {
+  Rigid3d c_from_a;
+  c_from_a.rotation =
+      c_from_b.rotation.normalized() * b_from_a.rotation.normalized();
+  c_from_a.translation = c_from_b * b_from_a.translation;
+  return c_from_a;
+}
+
+// One board view of one camera, as mrcal takes it.
+struct View {
+  int camera = 0;
+  int frame = 0;           // index into frames_toref
+  size_t source = 0;       // index into the camera's views
+  Rigid3d cam_from_board;  // the seed
+};
+
+// The problem mrcal_optimize() solves, stage by stage, in place.
 struct Problem {
-  std::vector<double> intrinsics;
-  std::vector<mrcal_pose_t> frames_toref;  // = cam_from_board (camera = ref)
-  std::vector<mrcal_observation_board_t> observations;
+  int num_cameras = 1;
+  std::vector<double> intrinsics;                // num_cameras x num_params
+  std::vector<mrcal_pose_t> extrinsics_fromref;  // cameras 1.. from camera 0
+  std::vector<mrcal_pose_t> frames_toref;        // ref (camera 0) from board
+  std::vector<mrcal_observation_board_t> observations;  // sorted by frame
   std::vector<mrcal_point3_t> pool;  // (Nobs, H, W): x, y, weight
   std::vector<bool> found;           // per pool entry: found by the detector
   mrcal_calobject_warp_t warp{};
-  int imagersize[2] = {0, 0};
+  std::vector<int> imagersizes;
 
   mrcal_stats_t Solve(const mrcal_lensmodel_t& model, bool core,
                       bool distortions, bool regularization, bool outliers,
@@ -67,12 +106,12 @@ struct Problem {
     selections.do_apply_outlier_rejection = outliers;
     const mrcal_problem_constants_t constants{-1.0, -1.0};
     const mrcal_stats_t stats = mrcal_optimize(
-        nullptr, 0, nullptr, 0, intrinsics.data(), nullptr, frames_toref.data(),
-        nullptr, warp_too ? &warp : nullptr, 1, 0,
-        static_cast<int>(frames_toref.size()), 0, 0, observations.data(),
-        nullptr, static_cast<int>(observations.size()), 0, pool.data(), &model,
-        imagersize, selections, &constants, board.spacing_m, board.grid_width,
-        board.grid_height, false, false);
+        nullptr, 0, nullptr, 0, intrinsics.data(), extrinsics_fromref.data(),
+        frames_toref.data(), nullptr, warp_too ? &warp : nullptr, num_cameras,
+        num_cameras - 1, static_cast<int>(frames_toref.size()), 0, 0,
+        observations.data(), nullptr, static_cast<int>(observations.size()), 0,
+        pool.data(), &model, imagersizes.data(), selections, &constants,
+        board.spacing_m, board.grid_width, board.grid_height, false, false);
     if (!std::isfinite(stats.rms_reproj_error__pixels) ||
         stats.rms_reproj_error__pixels < 0.0) {
       throw Error("mrcal_optimize failed (no finite solution)");
@@ -80,6 +119,76 @@ struct Problem {
     return stats;
   }
 };
+
+// The board's pose in one view by PnP of the stereographic seed's
+// unprojections (normalised, z = 1), as mrcal's seed does; false if fewer
+// than 4 corners unproject.
+bool SeedBoardPose(const BoardObservation& observation,
+                   const std::vector<cv::Point3d>& object_points,
+                   const double* seed_intrinsics, Rigid3d* cam_from_board) {
+  mrcal_lensmodel_t stereographic;
+  stereographic.type = MRCAL_LENSMODEL_STEREOGRAPHIC;
+  std::vector<cv::Point3d> seen_in_board;
+  std::vector<cv::Point2d> normalised;
+  for (size_t k = 0; k < object_points.size(); ++k) {
+    if (observation.weights[k] <= 0.0) continue;
+    const mrcal_point2_t q{
+        {observation.pixels[k].x(), observation.pixels[k].y()}};
+    mrcal_point3_t v;
+    if (!mrcal_unproject(&v, &q, 1, &stereographic, seed_intrinsics) ||
+        !(v.z > 0.0)) {
+      continue;
+    }
+    seen_in_board.push_back(object_points[k]);
+    normalised.emplace_back(v.x / v.z, v.y / v.z);
+  }
+  if (seen_in_board.size() < 4) return false;  // mrcal drops such views too
+  cv::Mat rvec;
+  cv::Mat tvec;
+  if (!cv::solvePnP(seen_in_board, normalised, cv::Mat::eye(3, 3, CV_64F),
+                    cv::Mat(), rvec, tvec)) {
+    return false;
+  }
+  mrcal_pose_t pose;
+  for (int i = 0; i < 3; ++i) {
+    pose.r.xyz[i] = rvec.at<double>(i);
+    pose.t.xyz[i] = tvec.at<double>(i);
+  }
+  *cam_from_board = RigidFromPose(pose);
+  return true;
+}
+
+// Camera c's pose relative to camera 0 from the frames both saw: the
+// quaternion mean of cam_c_from_cam0 over them, and the mean translation.
+Rigid3d SeedCameraFromReference(const std::vector<View>& views, int camera) {
+  std::map<int, const View*> reference;
+  for (const View& view : views) {
+    if (view.camera == 0) reference[view.frame] = &view;
+  }
+  Eigen::Vector4d rotation_sum = Eigen::Vector4d::Zero();
+  Eigen::Vector3d translation_sum = Eigen::Vector3d::Zero();
+  int count = 0;
+  for (const View& view : views) {
+    const auto it = reference.find(view.frame);
+    if (view.camera != camera || it == reference.end()) continue;
+    const Rigid3d c_from_0 =
+        Compose(view.cam_from_board, it->second->cam_from_board.Inverse());
+    Eigen::Vector4d q = c_from_0.rotation.normalized().coeffs();
+    if (count > 0 && q.dot(rotation_sum) < 0.0) q = -q;
+    rotation_sum += q;
+    translation_sum += c_from_0.translation;
+    ++count;
+  }
+  if (count == 0) {
+    throw ErrorAt("calibration: camera ", camera,
+                  " shares no board view (frame) with camera 0, so the rig "
+                  "cannot be tied together");
+  }
+  Rigid3d c_from_0;
+  c_from_0.rotation = Eigen::Quaterniond(rotation_sum.normalized());
+  c_from_0.translation = translation_sum / count;
+  return c_from_0;
+}
 
 }  // namespace
 
@@ -93,73 +202,93 @@ void MrcalCalibrationOptions::Check() const {
   }
 }
 
-MrcalCalibration CalibrateWithMrcal(
-    const std::vector<BoardObservation>& observations,
-    const CalibrationBoard& board, const MrcalCalibrationOptions& options) {
+MrcalRigCalibration CalibrateRigWithMrcal(
+    const std::vector<RigCameraViews>& cameras, const CalibrationBoard& board,
+    const MrcalCalibrationOptions& options) {
   options.Check();
+  if (cameras.empty()) throw Error("calibration: no camera");
   const mrcal_lensmodel_t model = LensModel(options.lens_model);
   const int num_params = mrcal_lensmodel_num_params(&model);
   const std::vector<Eigen::Vector3d> corners = board.CornersInBoard();
   const int num_corners = board.NumCorners();
-
-  MrcalCalibration result;
-  result.lens_model = options.lens_model;
-  result.image_width = options.image_width;
-  result.image_height = options.image_height;
-
-  Problem problem;
-  problem.imagersize[0] = options.image_width;
-  problem.imagersize[1] = options.image_height;
-  // The stereographic seed (mrcal's seed_stereographic): f, centre at the
-  // image's middle in mrcal's pixel convention.
-  problem.intrinsics = {options.focal_px, options.focal_px,
-                        (options.image_width - 1) / 2.0,
-                        (options.image_height - 1) / 2.0};
-  mrcal_lensmodel_t stereographic;
-  stereographic.type = MRCAL_LENSMODEL_STEREOGRAPHIC;
-
+  const int num_cameras = static_cast<int>(cameras.size());
   std::vector<cv::Point3d> object_points;
   for (const Eigen::Vector3d& corner : corners) {
     object_points.emplace_back(corner.x(), corner.y(), corner.z());
   }
-  for (const BoardObservation& observation : observations) {
-    if (!observation.Found()) continue;
-    if (static_cast<int>(observation.pixels.size()) != num_corners) {
-      throw ErrorAt(observation.image, ": ", observation.pixels.size(),
-                    " corners, but the board ", board.ToString(), " has ",
-                    num_corners);
+
+  // The stereographic seed (mrcal's seed_stereographic): f, centre at the
+  // image's middle in mrcal's pixel convention.
+  const std::vector<double> seed = {options.focal_px, options.focal_px,
+                                    (options.image_width - 1) / 2.0,
+                                    (options.image_height - 1) / 2.0};
+  std::vector<View> views;
+  std::map<int, int> frame_index;  // caller's frame -> mrcal's
+  for (int c = 0; c < num_cameras; ++c) {
+    const RigCameraViews& camera = cameras[c];
+    if (camera.frames.size() != camera.views.size()) {
+      throw ErrorAt("calibration: camera ", c, " has ", camera.views.size(),
+                    " views but ", camera.frames.size(), " frame numbers");
     }
-    // Board pose by PnP of the seed's unprojections (normalised, z = 1).
-    std::vector<cv::Point3d> seen_in_board;
-    std::vector<cv::Point2d> normalised;
-    for (int k = 0; k < num_corners; ++k) {
-      if (observation.weights[k] <= 0.0) continue;
-      const mrcal_point2_t q{
-          {observation.pixels[k].x(), observation.pixels[k].y()}};
-      mrcal_point3_t v;
-      if (!mrcal_unproject(&v, &q, 1, &stereographic,
-                           problem.intrinsics.data()) ||
-          !(v.z > 0.0)) {
+    std::set<int> seen_frames;
+    for (size_t i = 0; i < camera.views.size(); ++i) {
+      const BoardObservation& observation = camera.views[i];
+      if (!observation.Found()) continue;
+      if (static_cast<int>(observation.pixels.size()) != num_corners) {
+        throw ErrorAt(observation.image, ": ", observation.pixels.size(),
+                      " corners, but the board ", board.ToString(), " has ",
+                      num_corners);
+      }
+      if (!seen_frames.insert(camera.frames[i]).second) {
+        throw ErrorAt(observation.image, ": camera ", c,
+                      " has a second view of frame ", camera.frames[i]);
+      }
+      View view;
+      view.camera = c;
+      view.frame = camera.frames[i];
+      view.source = i;
+      if (!SeedBoardPose(observation, object_points, seed.data(),
+                         &view.cam_from_board)) {
         continue;
       }
-      seen_in_board.push_back(object_points[k]);
-      normalised.emplace_back(v.x / v.z, v.y / v.z);
+      views.push_back(view);
     }
-    if (seen_in_board.size() < 4) continue;  // mrcal drops such images too
-    cv::Mat rvec;
-    cv::Mat tvec;
-    if (!cv::solvePnP(seen_in_board, normalised, cv::Mat::eye(3, 3, CV_64F),
-                      cv::Mat(), rvec, tvec)) {
-      continue;
+  }
+  // mrcal wants the observations ordered by frame.
+  std::stable_sort(
+      views.begin(), views.end(), [](const View& a, const View& b) {
+        return a.frame != b.frame ? a.frame < b.frame : a.camera < b.camera;
+      });
+
+  Problem problem;
+  problem.num_cameras = num_cameras;
+  for (int c = 0; c < num_cameras; ++c) {
+    problem.intrinsics.insert(problem.intrinsics.end(), seed.begin(),
+                              seed.end());
+    problem.imagersizes.push_back(options.image_width);
+    problem.imagersizes.push_back(options.image_height);
+  }
+  std::vector<Rigid3d> cam_from_ref(num_cameras);
+  for (int c = 1; c < num_cameras; ++c) {
+    cam_from_ref[c] = SeedCameraFromReference(views, c);
+    problem.extrinsics_fromref.push_back(PoseFromRigid(cam_from_ref[c]));
+  }
+
+  MrcalRigCalibration result;
+  result.cameras.resize(num_cameras);
+  std::vector<int> views_per_camera(num_cameras, 0);
+  for (View& view : views) {
+    const auto [it, inserted] = frame_index.emplace(
+        view.frame, static_cast<int>(problem.frames_toref.size()));
+    if (inserted) {
+      problem.frames_toref.push_back(PoseFromRigid(
+          Compose(cam_from_ref[view.camera].Inverse(), view.cam_from_board)));
     }
-    mrcal_pose_t pose;
-    for (int i = 0; i < 3; ++i) {
-      pose.r.xyz[i] = rvec.at<double>(i);
-      pose.t.xyz[i] = tvec.at<double>(i);
-    }
-    const int frame = static_cast<int>(problem.frames_toref.size());
-    problem.frames_toref.push_back(pose);
-    problem.observations.push_back({{0, -1}, frame});
+    problem.observations.push_back(
+        {{view.camera, view.camera - 1}, it->second});
+    const BoardObservation& observation =
+        cameras[view.camera].views[view.source];
+    MrcalCalibration& camera = result.cameras[view.camera];
     for (int k = 0; k < num_corners; ++k) {
       mrcal_point3_t point;
       point.x = observation.pixels[k].x();
@@ -167,30 +296,48 @@ MrcalCalibration CalibrateWithMrcal(
       point.z = observation.weights[k] > 0.0 ? observation.weights[k] : -1.0;
       problem.pool.push_back(point);
       problem.found.push_back(observation.weights[k] > 0.0);
-      result.num_corners_observed += observation.weights[k] > 0.0;
+      camera.num_corners_observed += observation.weights[k] > 0.0;
     }
-    result.images.push_back(observation.image);
+    camera.images.push_back(observation.image);
+    ++views_per_camera[view.camera];
   }
 
-  // Enough data: 3 views at least (one view cannot tell focal length from
-  // distance), and more measurements than unknowns.
-  const int num_views = static_cast<int>(problem.frames_toref.size());
-  const int unknowns = 6 * num_views + num_params;
-  if (num_views < 3 || 2 * result.num_corners_observed < 2 * unknowns) {
-    throw ErrorAt("calibration: ", num_views, " board views with ",
-                  result.num_corners_observed, " corners are too few for ",
+  // Enough data: 3 views a camera at least (one view cannot tell focal
+  // length from distance), and more measurements than unknowns.
+  int corners_observed = 0;
+  for (int c = 0; c < num_cameras; ++c) {
+    corners_observed += result.cameras[c].num_corners_observed;
+    if (views_per_camera[c] < 3) {
+      throw ErrorAt("calibration: camera ", c, ": ", views_per_camera[c],
+                    " board views are too few for ", options.lens_model,
+                    ": need at least 3");
+    }
+  }
+  const int unknowns = 6 * static_cast<int>(problem.frames_toref.size()) +
+                       6 * (num_cameras - 1) + num_cameras * num_params;
+  if (corners_observed < unknowns) {
+    throw ErrorAt("calibration: ", views.size(), " board views with ",
+                  corners_observed, " corners are too few for ",
                   options.lens_model, " (", num_params,
-                  " intrinsics): need at least 3 views and twice as many "
-                  "corner coordinates as unknowns (",
+                  " intrinsics a camera): need twice as many corner "
+                  "coordinates as unknowns (",
                   2 * unknowns, ")");
   }
 
   // mrcal-calibrate-cameras' stages.
+  mrcal_lensmodel_t stereographic;
+  stereographic.type = MRCAL_LENSMODEL_STEREOGRAPHIC;
   problem.Solve(stereographic, false, false, false, false, false, board);
   problem.Solve(stereographic, true, false, false, false, false, board);
-  problem.intrinsics.resize(num_params, 0.0);
+  std::vector<double> expanded;
+  for (int c = 0; c < num_cameras; ++c) {
+    expanded.insert(expanded.end(), problem.intrinsics.begin() + 4 * c,
+                    problem.intrinsics.begin() + 4 * c + 4);
+    expanded.resize(expanded.size() + num_params - 4, 0.0);
+  }
+  problem.intrinsics = expanded;
   const int num_missing =
-      static_cast<int>(problem.pool.size()) - result.num_corners_observed;
+      static_cast<int>(problem.pool.size()) - corners_observed;
   mrcal_stats_t stats = problem.Solve(model, true, true, true,
                                       options.outlier_rejection, false, board);
   if (options.calobject_warp) {
@@ -202,19 +349,30 @@ MrcalCalibration CalibrateWithMrcal(
   }
   result.rms_px = stats.rms_reproj_error__pixels;
   result.num_outliers = stats.Noutliers - num_missing;
-  result.intrinsics = problem.intrinsics;
-  result.calobject_warp = {problem.warp.x2, problem.warp.y2};
+  result.cam_from_rig.assign(num_cameras, Rigid3d());
+  for (int c = 1; c < num_cameras; ++c) {
+    result.cam_from_rig[c] = RigidFromPose(problem.extrinsics_fromref[c - 1]);
+  }
+  for (int c = 0; c < num_cameras; ++c) {
+    MrcalCalibration& camera = result.cameras[c];
+    camera.lens_model = options.lens_model;
+    camera.image_width = options.image_width;
+    camera.image_height = options.image_height;
+    camera.intrinsics.assign(problem.intrinsics.begin() + c * num_params,
+                             problem.intrinsics.begin() + (c + 1) * num_params);
+    camera.rms_px = result.rms_px;
+    camera.calobject_warp = {problem.warp.x2, problem.warp.y2};
+  }
 
-  const std::vector<bool>& found = problem.found;
   // Residuals through mrcal's projection, the board warped as mrcal warps it.
-  for (int view = 0; view < num_views; ++view) {
-    const mrcal_pose_t& pose = problem.frames_toref[view];
-    const Eigen::Matrix3d rotation = RotationFromRodrigues(pose.r);
-    const Eigen::Vector3d translation(pose.t.x, pose.t.y, pose.t.z);
-    Rigid3d cam_from_board;
-    cam_from_board.rotation = Eigen::Quaterniond(rotation);
-    cam_from_board.translation = translation;
-    result.cam_from_board.push_back(cam_from_board);
+  for (size_t o = 0; o < problem.observations.size(); ++o) {
+    const int c = problem.observations[o].icam.intrinsics;
+    MrcalCalibration& camera = result.cameras[c];
+    const Rigid3d cam_from_board = Compose(
+        result.cam_from_rig[c],
+        RigidFromPose(problem.frames_toref[problem.observations[o].iframe]));
+    const Eigen::Matrix3d rotation = cam_from_board.RotationMatrix();
+    camera.cam_from_board.push_back(cam_from_board);
     std::vector<Eigen::Vector2d> residuals;
     std::vector<bool> outliers;
     for (int k = 0; k < num_corners; ++k) {
@@ -225,27 +383,44 @@ MrcalCalibration CalibrateWithMrcal(
       Eigen::Vector3d point = corners[k];
       point.z() += problem.warp.x2 * 4.0 * xr * (1.0 - xr) +
                    problem.warp.y2 * 4.0 * yr * (1.0 - yr);
-      const Eigen::Vector3d in_cam = rotation * point + translation;
+      const Eigen::Vector3d in_cam =
+          rotation * point + cam_from_board.translation;
       const mrcal_point3_t p{{in_cam.x(), in_cam.y(), in_cam.z()}};
       mrcal_point2_t q;
       mrcal_project(&q, nullptr, nullptr, &p, 1, &model,
-                    problem.intrinsics.data());
-      const mrcal_point3_t& seen = problem.pool[view * num_corners + k];
+                    camera.intrinsics.data());
+      const size_t entry = o * num_corners + k;
+      const mrcal_point3_t& seen = problem.pool[entry];
       residuals.emplace_back(q.x - seen.x, q.y - seen.y);
       // Missing on input or thrown out by the solve: both have weight < 0;
       // only the second is an outlier.
-      outliers.push_back(seen.z <= 0.0 && found[view * num_corners + k]);
+      const bool outlier = seen.z <= 0.0 && problem.found[entry];
+      outliers.push_back(outlier);
+      camera.num_outliers += outlier;
     }
-    result.residuals_px.push_back(std::move(residuals));
-    result.outliers.push_back(std::move(outliers));
+    camera.residuals_px.push_back(std::move(residuals));
+    camera.outliers.push_back(std::move(outliers));
   }
   return result;
+}
+
+MrcalCalibration CalibrateWithMrcal(
+    const std::vector<BoardObservation>& observations,
+    const CalibrationBoard& board, const MrcalCalibrationOptions& options) {
+  RigCameraViews camera;
+  camera.views = observations;
+  for (size_t i = 0; i < observations.size(); ++i) {
+    camera.frames.push_back(static_cast<int>(i));
+  }
+  return CalibrateRigWithMrcal({camera}, board, options).cameras[0];
 }
 
 std::string FormatCameraModel(const std::string& lens_model,
                               const std::vector<double>& intrinsics,
                               int image_width, int image_height,
+                              const Rigid3d& cam_from_rig,
                               const std::vector<std::string>& comments) {
+  const mrcal_pose_t extrinsics = PoseFromRigid(cam_from_rig);
   std::ostringstream text;
   for (const std::string& comment : comments) text << "# " << comment << "\n";
   text << "{\n    'lensmodel':  '" << lens_model << "',\n"
@@ -254,7 +429,11 @@ std::string FormatCameraModel(const std::string& lens_model,
   for (const double value : intrinsics) text << " " << Number(value) << ",";
   text << " ],\n"
        << "    # extrinsics are rt_fromref\n"
-       << "    'extrinsics': [ 0, 0, 0, 0, 0, 0, ],\n"
+       << "    'extrinsics': [";
+  for (const mrcal_point3_t* part : {&extrinsics.r, &extrinsics.t}) {
+    for (int i = 0; i < 3; ++i) text << " " << Number(part->xyz[i]) << ",";
+  }
+  text << " ],\n"
        << "    'imagersize': [ " << image_width << ", " << image_height
        << ", ],\n}\n";
   return text.str();

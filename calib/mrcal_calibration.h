@@ -58,11 +58,39 @@ MrcalCalibration CalibrateWithMrcal(
     const std::vector<BoardObservation>& observations,
     const CalibrationBoard& board, const MrcalCalibrationOptions& options);
 
+// One camera of a rig: its images of the board, and for each the frame (the
+// instant: views of different cameras with the same frame saw the board in
+// one pose).
+struct RigCameraViews {
+  std::vector<BoardObservation> views;
+  std::vector<int> frames;  // parallel to views
+};
+
+struct MrcalRigCalibration {
+  // Per camera: intrinsics, its views, residuals and outliers; rms_px and
+  // calobject_warp are the rig's.
+  std::vector<MrcalCalibration> cameras;
+  std::vector<Rigid3d> cam_from_rig;  // the rig's frame is camera 0's
+  double rms_px = 0.0;
+  int num_outliers = 0;
+};
+
+// Synchronised cameras that see one board, as mrcal-calibrate-cameras with
+// several globs: the intrinsics of each, and their poses. The extrinsics
+// are seeded from the frames each camera shares with camera 0 (an error if
+// it shares none); the stages are those of CalibrateWithMrcal. All cameras
+// have options' image size.
+MrcalRigCalibration CalibrateRigWithMrcal(
+    const std::vector<RigCameraViews>& cameras, const CalibrationBoard& board,
+    const MrcalCalibrationOptions& options);
+
 // The .cameramodel text mrcal reads (mrcal's Python-dict layout; every
-// number to 17 significant digits). `comments` become '#' lines.
+// number to 17 significant digits). `comments` become '#' lines;
+// cam_from_rig is written as mrcal's extrinsics (rt_fromref).
 std::string FormatCameraModel(const std::string& lens_model,
                               const std::vector<double>& intrinsics,
                               int image_width, int image_height,
+                              const Rigid3d& cam_from_rig,
                               const std::vector<std::string>& comments);
 
 struct MrcalCameraModel {

@@ -1,13 +1,16 @@
 #include "calib/mrcal_calibration.h"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -97,18 +100,22 @@ TEST(CalibrateWithMrcal, RecoversKnownIntrinsicsFromNoisyCorners) {
   EXPECT_EQ(result.images.size(), 60u);
 }
 
-// Runs Debian's mrcal-calibrate-cameras on `views` (written as corners.vnl)
-// and checks that CalibrateWithMrcal finds the same intrinsics and outliers.
-void ExpectSameAsMrcalTool(const std::vector<BoardObservation>& views,
+// Runs Debian's mrcal-calibrate-cameras on the cameras' views (written as
+// one corners.vnl, a glob a camera) and checks that CalibrateRigWithMrcal
+// finds the same intrinsics, extrinsics and outliers.
+void ExpectSameAsMrcalTool(const std::vector<RigCameraViews>& cameras,
                            const CalibrationBoard& board,
                            const MrcalCalibrationOptions& options,
-                           const std::string& glob) {
+                           const std::vector<std::string>& globs) {
   const fs::path dir = FreshTestDir("uw_mrcal_calibration_test");
-  const fs::path corners = dir / "corners.vnl";
-  WriteFilesAtomically({{corners,
+  std::vector<BoardObservation> all_views;
+  for (const RigCameraViews& camera : cameras) {
+    all_views.insert(all_views.end(), camera.views.begin(), camera.views.end());
+  }
+  WriteFilesAtomically({{dir / "corners.vnl",
                          [&](std::ostream& out) {
                            out << FormatCornersVnl(
-                               views, CornerWeightColumn::kLevel, {});
+                               all_views, CornerWeightColumn::kLevel, {});
                          }}},
                        false);
   char flags[512];
@@ -118,40 +125,61 @@ void ExpectSameAsMrcalTool(const std::vector<BoardObservation>& views,
                 options.lens_model.c_str(), options.focal_px, board.spacing_m,
                 board.grid_width, board.grid_height, options.image_width,
                 options.image_height);
+  std::string quoted_globs;
+  for (const std::string& glob : globs) quoted_globs += " '" + glob + "'";
   const testing::ProcessResult tool =
       RunProcess("cd " + Quoted(dir) +
                      " && /usr/bin/python3 /usr/bin/mrcal-calibrate-cameras"
                      " --corners-cache corners.vnl --outdir . " +
-                     flags + " '" + glob + "'",
+                     flags + quoted_globs,
                  true);
   ASSERT_EQ(tool.exit_code, 0) << tool.output;
-  const MrcalCameraModel theirs =
-      ReadCameraModel((dir / "camera-0.cameramodel").string());
-  const MrcalCalibration ours = CalibrateWithMrcal(views, board, options);
-  ASSERT_EQ(theirs.lens_model, options.lens_model);
-  ASSERT_EQ(theirs.intrinsics.size(), ours.intrinsics.size());
+  const MrcalRigCalibration ours =
+      CalibrateRigWithMrcal(cameras, board, options);
   double worst = 0.0;
-  for (size_t i = 0; i < ours.intrinsics.size(); ++i) {
-    const double a = ours.intrinsics[i];
-    const double b = theirs.intrinsics[i];
-    const double relative = std::abs(a - b) / std::max(std::abs(b), 1e-300);
-    worst = std::max(worst, relative);
-    EXPECT_LT(relative, 1e-4) << "intrinsic " << i << ": ours " << a
-                              << ", mrcal-calibrate-cameras " << b;
+  for (size_t c = 0; c < cameras.size(); ++c) {
+    const MrcalCameraModel theirs = ReadCameraModel(
+        (dir / ("camera-" + std::to_string(c) + ".cameramodel")).string());
+    ASSERT_EQ(theirs.lens_model, options.lens_model);
+    const std::vector<double>& intrinsics = ours.cameras[c].intrinsics;
+    ASSERT_EQ(theirs.intrinsics.size(), intrinsics.size());
+    for (size_t i = 0; i < intrinsics.size(); ++i) {
+      const double relative = std::abs(intrinsics[i] - theirs.intrinsics[i]) /
+                              std::max(std::abs(theirs.intrinsics[i]), 1e-300);
+      worst = std::max(worst, relative);
+      EXPECT_LT(relative, 1e-4)
+          << "camera " << c << " intrinsic " << i << ": ours " << intrinsics[i]
+          << ", mrcal-calibrate-cameras " << theirs.intrinsics[i];
+    }
+    // Their extrinsics are camera-from-camera-0 too: compare the baseline.
+    const double baseline = ours.cam_from_rig[c].translation.norm();
+    const double their_baseline = theirs.rt_cam_ref.tail<3>().norm();
+    EXPECT_NEAR(baseline, their_baseline, 1e-4 * std::max(their_baseline, 1e-9))
+        << "camera " << c;
   }
   std::smatch match;
   const std::regex noutliers("Noutliers: ([0-9]+) out of ([0-9]+)");
   ASSERT_TRUE(std::regex_search(tool.output, match, noutliers)) << tool.output;
   int missing = 0;
-  for (const BoardObservation& view : views) {
+  for (const BoardObservation& view : all_views) {
     if (view.Found()) missing += board.NumCorners() - view.NumFoundCorners();
   }
   std::printf(
-      "[ figures ] vs mrcal-calibrate-cameras: worst relative "
-      "intrinsic difference %.2e; outliers %d (theirs %s, of which "
-      "%d missing on input); RMS %.4f px\n",
-      worst, ours.num_outliers, match[1].str().c_str(), missing, ours.rms_px);
+      "[ figures ] vs mrcal-calibrate-cameras (%zu camera(s)): worst "
+      "relative intrinsic difference %.2e; outliers %d (theirs %s, "
+      "of which %d missing on input); RMS %.4f px\n",
+      cameras.size(), worst, ours.num_outliers, match[1].str().c_str(), missing,
+      ours.rms_px);
   EXPECT_EQ(ours.num_outliers + missing, std::stoi(match[1].str()));
+}
+
+RigCameraViews OneCamera(const std::vector<BoardObservation>& views) {
+  RigCameraViews camera;
+  camera.views = views;
+  for (size_t i = 0; i < views.size(); ++i) {
+    camera.frames.push_back(static_cast<int>(i));
+  }
+  return camera;
 }
 
 TEST(CalibrateWithMrcal, SameSolutionAsMrcalCalibrateCamerasWithOutliers) {
@@ -168,7 +196,7 @@ TEST(CalibrateWithMrcal, SameSolutionAsMrcalCalibrateCamerasWithOutliers) {
   // distortion seed then lands it in different places run by run.
   const MrcalCalibrationOptions options =
       Options("LENSMODEL_OPENCV4", 800.0, 1024, 768);
-  ExpectSameAsMrcalTool(views, board, options, "frame*.png");
+  ExpectSameAsMrcalTool({OneCamera(views)}, board, options, {"frame*.png"});
   const MrcalCalibration ours = CalibrateWithMrcal(views, board, options);
   EXPECT_TRUE(ours.outliers[3][17]);
   EXPECT_TRUE(ours.outliers[8][40]);
@@ -176,24 +204,36 @@ TEST(CalibrateWithMrcal, SameSolutionAsMrcalCalibrateCamerasWithOutliers) {
   EXPECT_FALSE(ours.outliers[15][5]);  // missing is not an outlier
 }
 
-std::vector<BoardObservation> RealLeftViews() {
+// OpenCV's real stereo sample, one side ("left" or "right"), frame n = the
+// image's number; detected once per process.
+RigCameraViews DetectRealViews(const std::string& side) {
   const fs::path dir =
       fs::path(UW_REALDATA_DIR) / "opencv_chessboard_stereo_640x480";
   const CalibrationBoard board = ParseBoard("chessboard:9x6:1");
-  std::vector<BoardObservation> views;
+  RigCameraViews camera;
   for (int n = 1; n <= 14; ++n) {
     if (n == 10) continue;
     char name[32];
-    std::snprintf(name, sizeof(name), "left%02d.jpg", n);
+    std::snprintf(name, sizeof(name), "%s%02d.jpg", side.c_str(), n);
     const cv::Mat image = cv::imread((dir / name).string());
     if (image.empty()) throw Error(std::string("cannot read ") + name);
-    views.push_back(DetectChessboard(image, board, name));
+    camera.views.push_back(DetectChessboard(image, board, name));
+    camera.frames.push_back(n);
   }
-  return views;
+  return camera;
+}
+
+const RigCameraViews& RealViews(const std::string& side) {
+  static std::map<std::string, RigCameraViews> detected;
+  auto it = detected.find(side);
+  if (it == detected.end()) {
+    it = detected.emplace(side, DetectRealViews(side)).first;
+  }
+  return it->second;
 }
 
 TEST(CalibrateWithMrcal, RealChessboardLikeOpenCvAndLikeTheMrcalTool) {
-  const std::vector<BoardObservation> views = RealLeftViews();
+  const std::vector<BoardObservation> views = RealViews("left").views;
   const CalibrationBoard board = ParseBoard("chessboard:9x6:1");
   const MrcalCalibrationOptions options =
       Options("LENSMODEL_OPENCV5", 530.0, 640, 480);
@@ -237,7 +277,80 @@ TEST(CalibrateWithMrcal, RealChessboardLikeOpenCvAndLikeTheMrcalTool) {
       ours.intrinsics[0], camera_matrix.at<double>(0, 0));
   EXPECT_EQ(object_points.size(), 13u);
   EXPECT_LT(std::abs(our_rms / opencv_rms - 1.0), 0.10);
-  ExpectSameAsMrcalTool(views, board, options, "left*.jpg");
+  ExpectSameAsMrcalTool({OneCamera(views)}, board, options, {"left*.jpg"});
+}
+
+// The stereo pair: mrcal's rig solve against OpenCV's stereoCalibrate on the
+// same corners (each camera seeded by its own calibrateCamera, then
+// everything refined), and against mrcal-calibrate-cameras with two globs.
+TEST(CalibrateRigWithMrcal, StereoBaselineLikeOpenCvAndLikeTheMrcalTool) {
+  const std::vector<RigCameraViews> cameras = {RealViews("left"),
+                                               RealViews("right")};
+  const CalibrationBoard board = ParseBoard("chessboard:9x6:1");
+  const MrcalCalibrationOptions options =
+      Options("LENSMODEL_OPENCV5", 530.0, 640, 480);
+  const MrcalRigCalibration ours =
+      CalibrateRigWithMrcal(cameras, board, options);
+
+  std::vector<std::vector<cv::Point3f>> object_points;
+  std::array<std::vector<std::vector<cv::Point2f>>, 2> image_points;
+  const std::vector<Eigen::Vector3d> corners = board.CornersInBoard();
+  for (size_t i = 0; i < cameras[0].views.size(); ++i) {
+    if (!cameras[0].views[i].Found() || !cameras[1].views[i].Found()) continue;
+    object_points.emplace_back();
+    for (const Eigen::Vector3d& corner : corners) {
+      object_points.back().emplace_back(corner.x(), corner.y(), 0.f);
+    }
+    for (int c = 0; c < 2; ++c) {
+      image_points[c].emplace_back();
+      for (const Eigen::Vector2d& pixel : cameras[c].views[i].pixels) {
+        image_points[c].back().emplace_back(pixel.x(), pixel.y());
+      }
+    }
+  }
+  std::array<cv::Mat, 2> matrices;
+  std::array<cv::Mat, 2> distortions;
+  for (int c = 0; c < 2; ++c) {
+    std::vector<cv::Mat> rvecs;
+    std::vector<cv::Mat> tvecs;
+    cv::calibrateCamera(object_points, image_points[c], cv::Size(640, 480),
+                        matrices[c], distortions[c], rvecs, tvecs);
+  }
+  cv::Mat rotation;
+  cv::Mat translation;
+  cv::Mat essential;
+  cv::Mat fundamental;
+  const double opencv_rms = cv::stereoCalibrate(
+      object_points, image_points[0], image_points[1], matrices[0],
+      distortions[0], matrices[1], distortions[1], cv::Size(640, 480), rotation,
+      translation, essential, fundamental, cv::CALIB_USE_INTRINSIC_GUESS);
+  const double opencv_baseline = cv::norm(translation);
+  const double our_baseline = ours.cam_from_rig[1].translation.norm();
+  std::printf(
+      "[ figures ] stereo pair, %zu common views: baseline ours %.5f "
+      "squares, OpenCV stereoCalibrate %.5f (RMS %.4f px); ratio "
+      "%.5f; ours: RMS %.4f px, %d outliers\n",
+      object_points.size(), our_baseline, opencv_baseline, opencv_rms,
+      our_baseline / opencv_baseline, ours.rms_px, ours.num_outliers);
+  EXPECT_EQ(object_points.size(), 13u);
+  EXPECT_NEAR(our_baseline / opencv_baseline, 1.0, 0.01);
+  ExpectSameAsMrcalTool(cameras, board, options, {"left*.jpg", "right*.jpg"});
+}
+
+TEST(CalibrateRigWithMrcal, CamerasWithoutACommonFrameAreAnError) {
+  RigCameraViews left = RealViews("left");
+  RigCameraViews right = RealViews("right");
+  for (int& frame : right.frames) frame += 100;
+  const CalibrationBoard board = ParseBoard("chessboard:9x6:1");
+  try {
+    CalibrateRigWithMrcal({left, right}, board,
+                          Options("LENSMODEL_OPENCV4", 530.0, 640, 480));
+    ADD_FAILURE() << "calibrated a rig without common views";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("camera 1 shares no board view"),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(CalibrateWithMrcal, TooFewViewsAndBadOptionsAreErrors) {
@@ -268,11 +381,15 @@ TEST(CameraModelFile, MrcalReadsWhatWeWriteToTheLastBit) {
       851.123456789012,    849.5, 511.25, 383.0625,
       -0.1234567890123e-3, 1e-9,  0.5,    -2.0};
   const fs::path path = dir / "cam.cameramodel";
+  Rigid3d cam_from_rig;
+  cam_from_rig.rotation = Eigen::Quaterniond(
+      Eigen::AngleAxisd(0.1, Eigen::Vector3d(1, 2, 3).normalized()));
+  cam_from_rig.translation = Eigen::Vector3d(-0.12, 0.003, 0.001);
   WriteFilesAtomically({{path,
                          [&](std::ostream& out) {
                            out << FormatCameraModel("LENSMODEL_OPENCV4",
                                                     intrinsics, 1024, 768,
-                                                    {"test"});
+                                                    cam_from_rig, {"test"});
                          }}},
                        false);
   const MrcalCameraModel model = ReadCameraModel(path.string());
@@ -280,6 +397,12 @@ TEST(CameraModelFile, MrcalReadsWhatWeWriteToTheLastBit) {
   EXPECT_EQ(model.intrinsics, intrinsics);
   EXPECT_EQ(model.image_width, 1024);
   EXPECT_EQ(model.image_height, 768);
+  const Eigen::Vector3d r =
+      0.1 * Eigen::Vector3d(1, 2, 3).normalized();  // Rodrigues
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(model.rt_cam_ref(i), r(i), 1e-15);
+    EXPECT_EQ(model.rt_cam_ref(3 + i), cam_from_rig.translation(i));
+  }
   // And mrcal's Python reads it too.
   const testing::ProcessResult python = RunProcess(
       "/usr/bin/python3 -c \"import mrcal,sys; "

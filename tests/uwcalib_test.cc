@@ -2,6 +2,7 @@
 // with mrcal's own reader; bad input refused with nothing written.
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -55,6 +56,77 @@ TEST(Uwcalib, DetectAndCalibrateTheLeftCamera) {
   EXPECT_EQ(model.lens_model, "LENSMODEL_OPENCV5");
   EXPECT_NEAR(model.intrinsics[0], 533.1, 1.0);  // OpenCV: 531.9
   EXPECT_TRUE(fs::exists(dir / "cal" / "calibration.json"));
+
+  // The camera into a COLMAP model that stock colmap reads: its text has
+  // the camera, cx and cy moved by +0.5 to COLMAP's pixel centres.
+  const auto exported =
+      RunProcess(kUwcalib.string() + " export --cameramodel " +
+                     Quoted(dir / "cal" / "camera-0.cameramodel") +
+                     " --to colmap --output_type BIN --output_path " +
+                     Quoted(dir / "colmap_bin"),
+                 true);
+  ASSERT_EQ(exported.exit_code, 0) << exported.output;
+  EXPECT_NE(exported.output.find("1 FULL_OPENCV 640 480 "), std::string::npos)
+      << exported.output;
+  fs::create_directories(dir / "colmap_txt");
+  const auto converted = RunProcess(
+      "colmap model_converter --input_path " + Quoted(dir / "colmap_bin") +
+          " --output_path " + Quoted(dir / "colmap_txt") + " --output_type TXT",
+      true);
+  ASSERT_EQ(converted.exit_code, 0) << converted.output;
+  std::ifstream cameras(dir / "colmap_txt" / "cameras.txt");
+  std::string line;
+  while (std::getline(cameras, line) && line[0] == '#') {
+  }
+  std::istringstream fields(line);
+  std::string id, name;
+  int width = 0, height = 0;
+  std::vector<double> params(12);
+  fields >> id >> name >> width >> height;
+  for (double& param : params) fields >> param;
+  EXPECT_EQ(name, "FULL_OPENCV");
+  EXPECT_NEAR(params[2], model.intrinsics[2] + 0.5, 1e-9);
+  EXPECT_NEAR(params[3], model.intrinsics[3] + 0.5, 1e-9);
+  EXPECT_NEAR(params[8], model.intrinsics[8], 1e-12);  // k3
+  EXPECT_EQ(params[9], 0.0);                           // OPENCV5: no k4
+
+  const auto yaml =
+      RunProcess(kUwcalib.string() + " export --cameramodel " +
+                     Quoted(dir / "cal" / "camera-0.cameramodel") +
+                     " --to opencv-yaml --out " + Quoted(dir / "camera.yaml"),
+                 true);
+  ASSERT_EQ(yaml.exit_code, 0) << yaml.output;
+  EXPECT_TRUE(fs::exists(dir / "camera.yaml"));
+}
+
+// Both cameras of the stereo pair from one corners.vnl, split by globs and
+// paired by the numbers in their names: the baseline as the library's
+// (CalibrateRigWithMrcal.*: 3.3267 squares, within 0.02 % of OpenCV's
+// stereoCalibrate), here in metres for 25 mm squares.
+TEST(Uwcalib, CalibratesTheStereoPair) {
+  const fs::path dir = FreshTestDir("uw_uwcalib_test");
+  auto result = RunProcess(
+      kUwcalib.string() + " detect --board chessboard:9x6:0.025 --images " +
+          Quoted(kImages) + " --out " + Quoted(dir / "corners.vnl"),
+      true);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("board found in 26 of 26 images"),
+            std::string::npos)
+      << result.output;
+  result = RunProcess(
+      kUwcalib.string() + " calibrate --board chessboard:9x6:0.025 --corners " +
+          Quoted(dir / "corners.vnl") +
+          " --cameras 'left*.jpg,right*.jpg' --lens_model LENSMODEL_OPENCV5"
+          " --focal 530 --imagersize 640,480 --out " +
+          Quoted(dir / "stereo"),
+      true);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const MrcalCameraModel left =
+      ReadCameraModel((dir / "stereo" / "camera-0.cameramodel").string());
+  const MrcalCameraModel right =
+      ReadCameraModel((dir / "stereo" / "camera-1.cameramodel").string());
+  EXPECT_EQ(left.rt_cam_ref.norm(), 0.0);
+  EXPECT_NEAR(right.rt_cam_ref.tail<3>().norm(), 3.3267 * 0.025, 0.0005);
 }
 
 TEST(Uwcalib, BadInputIsRefusedAndNothingIsWritten) {

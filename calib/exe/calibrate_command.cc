@@ -1,3 +1,6 @@
+#include <fnmatch.h>
+
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,25 +17,79 @@
 #include "colmap_plugins/util/file.h"
 
 namespace uw {
+namespace {
+
+// The frame of an image of a rig: the last run of digits in its name
+// (left01.jpg and right01.jpg are frame 1), as mrcal-calibrate-cameras
+// pairs them.
+int FrameOfImage(const std::string& image) {
+  const std::string stem = std::filesystem::path(image).stem().string();
+  const size_t end = stem.find_last_of("0123456789");
+  if (end == std::string::npos) {
+    throw ErrorAt(image, ": a rig's image names need a frame number");
+  }
+  size_t begin = end;
+  while (begin > 0 &&
+         std::isdigit(static_cast<unsigned char>(stem[begin - 1]))) {
+    --begin;
+  }
+  return std::stoi(stem.substr(begin, std::min<size_t>(end - begin + 1, 9)));
+}
+
+// The views of each camera: the images matching its glob (the first glob
+// that matches wins). One camera: every image, numbered in file order.
+std::vector<RigCameraViews> SplitByCamera(
+    const std::vector<BoardObservation>& observations,
+    const std::vector<std::string>& globs, const std::string& where) {
+  std::vector<RigCameraViews> cameras(globs.size());
+  for (size_t i = 0; i < observations.size(); ++i) {
+    const BoardObservation& observation = observations[i];
+    size_t c = 0;
+    while (c < globs.size() &&
+           fnmatch(globs[c].c_str(), observation.image.c_str(), 0) != 0) {
+      ++c;
+    }
+    if (c == globs.size()) continue;  // not one of the cameras
+    cameras[c].views.push_back(observation);
+    cameras[c].frames.push_back(globs.size() == 1
+                                    ? static_cast<int>(i)
+                                    : FrameOfImage(observation.image));
+  }
+  for (size_t c = 0; c < globs.size(); ++c) {
+    if (cameras[c].views.empty()) {
+      throw ErrorAt(where, ": no image matches camera ", c, "'s glob '",
+                    globs[c], "'");
+    }
+  }
+  return cameras;
+}
+
+}  // namespace
 
 int RunCalibrate(int argc, char** argv) {
   CLI::App app(
-      "Calibrates one camera from corners.vnl with mrcal's C library: the "
+      "Calibrates a camera, or a synchronised rig (--cameras), from "
+      "corners.vnl with mrcal's C library: the "
       "solve mrcal-calibrate-cameras runs (stereographic seed, geometry, "
       "core, then the lens model with regularization and outlier rejection, "
-      "then the board's warp). Writes camera-0.cameramodel (mrcal's format) "
-      "and calibration.json (RMS, outliers, residuals per image) into --out "
+      "then the board's warp). Writes camera-N.cameramodel (mrcal's format; "
+      "a rig's extrinsics are camera N from camera 0) and calibration.json "
+      "(RMS, outliers, residuals per image) into --out "
       "(docs/uwcalib.md).\n\n"
       "Example:\n"
       "  uwcalib calibrate --board chessboard:9x6:0.025 --corners "
       "corners.vnl --lens_model LENSMODEL_OPENCV8 --focal 850 --imagersize "
-      "1024,768 --out cal",
+      "1024,768 --out cal\n"
+      "  uwcalib calibrate --board chessboard:9x6:0.025 --corners "
+      "corners.vnl --cameras 'left*.jpg,right*.jpg' --lens_model "
+      "LENSMODEL_OPENCV5 --focal 530 --imagersize 640,480 --out stereo",
       "uwcalib calibrate");
   std::string board_spec;
   std::string corners_path;
   std::string out;
   std::string imagersize;
   MrcalCalibrationOptions options;
+  std::vector<std::string> camera_globs = {"*"};
   bool skip_regularization = false;
   bool skip_outlier_rejection = false;
   bool skip_calobject_warp = false;
@@ -50,6 +107,12 @@ int RunCalibrate(int argc, char** argv) {
   app.add_option("--imagersize", imagersize, "WIDTH,HEIGHT in pixels")
       ->required();
   app.add_option("--out", out, "Folder for the outputs (created)")->required();
+  app.add_option("--cameras", camera_globs,
+                 "A glob of image names per camera of a synchronised rig, "
+                 "e.g. 'left*.jpg,right*.jpg'; the last number in a name is "
+                 "its frame (the instant)")
+      ->delimiter(',')
+      ->capture_default_str();
   app.add_flag("--skip_regularization", skip_regularization,
                "As mrcal-calibrate-cameras --skip-regularization");
   app.add_flag("--skip_outlier_rejection", skip_outlier_rejection,
@@ -75,65 +138,95 @@ int RunCalibrate(int argc, char** argv) {
     options.calobject_warp = !skip_calobject_warp;
     options.Check();
     const CornersVnl corners = ReadCornersVnl(corners_path, board.NumCorners());
-    const MrcalCalibration result =
-        CalibrateWithMrcal(corners.observations, board, options);
+    const std::vector<RigCameraViews> cameras =
+        SplitByCamera(corners.observations, camera_globs, corners_path);
+    const MrcalRigCalibration result =
+        CalibrateRigWithMrcal(cameras, board, options);
 
-    nlohmann::json images = nlohmann::json::array();
-    for (size_t v = 0; v < result.images.size(); ++v) {
-      double sum_squares = 0.0;
-      int inliers = 0;
-      int outliers = 0;
-      for (size_t k = 0; k < result.residuals_px[v].size(); ++k) {
-        if (result.outliers[v][k]) {
-          ++outliers;
-        } else {
-          sum_squares += result.residuals_px[v][k].squaredNorm();
+    std::ostringstream command;
+    command << "uwcalib calibrate --board " << board.ToString()
+            << " --lens_model " << options.lens_model;
+    const std::filesystem::path dir(out);
+    std::vector<PendingFile> files;
+    nlohmann::json json_cameras = nlohmann::json::array();
+    for (size_t c = 0; c < result.cameras.size(); ++c) {
+      const MrcalCalibration& camera = result.cameras[c];
+      nlohmann::json images = nlohmann::json::array();
+      for (size_t v = 0; v < camera.images.size(); ++v) {
+        double sum_squares = 0.0;
+        int inliers = 0;
+        for (size_t k = 0; k < camera.residuals_px[v].size(); ++k) {
+          if (camera.outliers[v][k]) continue;
+          sum_squares += camera.residuals_px[v][k].squaredNorm();
           ++inliers;
         }
+        images.push_back(
+            {{"image", camera.images[v]},
+             {"rms_px", std::sqrt(sum_squares / std::max(inliers, 1))},
+             {"outliers",
+              static_cast<int>(camera.residuals_px[v].size()) - inliers}});
       }
-      images.push_back(
-          {{"image", result.images[v]},
-           {"rms_px", std::sqrt(sum_squares / std::max(inliers, 1))},
-           {"outliers", outliers}});
+      const Rigid3d& cam_from_rig = result.cam_from_rig[c];
+      const Eigen::Quaterniond& q = cam_from_rig.rotation;
+      json_cameras.push_back(
+          {{"camera", c},
+           {"glob", camera_globs[c]},
+           {"intrinsics", camera.intrinsics},
+           {"cam_from_rig",
+            {{"rotation_wxyz", {q.w(), q.x(), q.y(), q.z()}},
+             {"translation",
+              {cam_from_rig.translation.x(), cam_from_rig.translation.y(),
+               cam_from_rig.translation.z()}}}},
+           {"corners_observed", camera.num_corners_observed},
+           {"outliers", camera.num_outliers},
+           {"images", images}});
+      files.push_back(
+          {dir / ("camera-" + std::to_string(c) + ".cameramodel"),
+           [&, c](std::ostream& stream) {
+             const MrcalCalibration& camera = result.cameras[c];
+             stream << FormatCameraModel(
+                 camera.lens_model, camera.intrinsics, camera.image_width,
+                 camera.image_height, result.cam_from_rig[c],
+                 {"generated with " + command.str(),
+                  "RMS reprojection error: " + std::to_string(result.rms_px) +
+                      " pixels",
+                  "Noutliers: " + std::to_string(camera.num_outliers) +
+                      " out of " +
+                      std::to_string(camera.num_corners_observed)});
+           }});
     }
     const nlohmann::json report = {
-        {"lens_model", result.lens_model},
-        {"intrinsics", result.intrinsics},
-        {"imagersize", {result.image_width, result.image_height}},
+        {"lens_model", options.lens_model},
+        {"imagersize", {options.image_width, options.image_height}},
         {"pixel_convention",
          "mrcal/OpenCV: (0, 0) is the centre of the top-left pixel"},
         {"rms_px", result.rms_px},
         {"rms_px_meaning",
          "mrcal's: sqrt of the mean square measurement (per coordinate)"},
-        {"corners_observed", result.num_corners_observed},
         {"outliers", result.num_outliers},
         {"calobject_warp_m",
-         {result.calobject_warp.x(), result.calobject_warp.y()}},
-        {"images", images}};
-    std::ostringstream command;
-    command << "uwcalib calibrate --board " << board.ToString()
-            << " --lens_model " << options.lens_model;
-    const std::filesystem::path dir(out);
-    WriteFilesAtomically(
-        {{dir / "camera-0.cameramodel",
-          [&](std::ostream& stream) {
-            stream << FormatCameraModel(
-                result.lens_model, result.intrinsics, result.image_width,
-                result.image_height,
-                {"generated with " + command.str(),
-                 "RMS reprojection error: " + std::to_string(result.rms_px) +
-                     " pixels",
-                 "Noutliers: " + std::to_string(result.num_outliers) +
-                     " out of " + std::to_string(result.num_corners_observed)});
-          }},
-         {dir / "calibration.json",
-          [&](std::ostream& stream) { stream << report.dump(1) << "\n"; }}},
-        false);
-    std::printf(
-        "[calibrate] %zu views, RMS %.3f px, %d outliers of %d "
-        "corners: %s\n",
-        result.images.size(), result.rms_px, result.num_outliers,
-        result.num_corners_observed, (dir / "camera-0.cameramodel").c_str());
+         {result.cameras[0].calobject_warp.x(),
+          result.cameras[0].calobject_warp.y()}},
+        {"units", "board units (SQUARE_M of --board): metres"},
+        {"cameras", json_cameras}};
+    files.push_back({dir / "calibration.json", [&](std::ostream& stream) {
+                       stream << report.dump(1) << "\n";
+                     }});
+    WriteFilesAtomically(files, false);
+    for (size_t c = 0; c < result.cameras.size(); ++c) {
+      std::printf(
+          "[calibrate] camera %zu: %zu views, %d outliers of %d "
+          "corners%s\n",
+          c, result.cameras[c].images.size(), result.cameras[c].num_outliers,
+          result.cameras[c].num_corners_observed,
+          c == 0 ? ""
+                 : (", baseline " +
+                    std::to_string(result.cam_from_rig[c].translation.norm()) +
+                    " m")
+                       .c_str());
+    }
+    std::printf("[calibrate] RMS %.3f px; %s\n", result.rms_px,
+                (dir / "camera-0.cameramodel").c_str());
   });
 }
 

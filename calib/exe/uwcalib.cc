@@ -12,12 +12,17 @@ int main(int argc, char** argv) {
       "  uwcalib detect    --board chessboard:9x6:0.025 --images calib "
       "--out corners.vnl\n"
       "  uwcalib calibrate --board chessboard:9x6:0.025 --corners "
-      "corners.vnl --lens_model LENSMODEL_OPENCV8 --focal 850 --out cal\n",
+      "corners.vnl --lens_model LENSMODEL_OPENCV8 --focal 850 --imagersize "
+      "1024,768 --out cal\n"
+      "  uwcalib export    --cameramodel cal/camera-0.cameramodel --to "
+      "colmap --output_path sparse_camera\n",
       {
           {"detect", uw::RunCalibDetect,
            "find the board's corners in calibration images (corners.vnl)"},
           {"calibrate", uw::RunCalibrate,
            "calibrate a camera from corners.vnl with mrcal (.cameramodel)"},
+          {"export", uw::RunCalibExport,
+           "a .cameramodel as a COLMAP camera or OpenCV YAML"},
       },
       argc, argv);
 }
