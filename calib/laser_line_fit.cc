@@ -1,0 +1,162 @@
+#include "calib/laser_line_fit.h"
+
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "colmap_plugins/cameras/camera_models.h"
+#include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/random.h"
+
+namespace uw {
+namespace {
+
+// Distance of `point` from the line through `a` with unit direction `d`.
+double DistanceFromLine(const Eigen::Vector3d& point, const Eigen::Vector3d& a,
+                        const Eigen::Vector3d& d) {
+  const Eigen::Vector3d offset = point - a;
+  return (offset - offset.dot(d) * d).norm();
+}
+
+}  // namespace
+
+void LaserLineFitOptions::Check() const {
+  if (!(inlier_distance_m > 0.0)) {
+    throw Error("laser line fit: inlier_distance_m must be > 0");
+  }
+  if (ransac_iterations < 1) {
+    throw Error("laser line fit: ransac_iterations must be >= 1");
+  }
+  if (min_distances < 3) {
+    throw Error("laser line fit: min_distances must be >= 3");
+  }
+}
+
+LaserLineFit FitLaserLine(const std::string& name, const Camera& camera,
+                          const std::vector<LaserBoardSpot>& spots,
+                          const LaserLineFitOptions& options) {
+  options.Check();
+  LaserLineFit fit;
+  fit.laser.name = name;
+  for (const LaserBoardSpot& spot : spots) {
+    if (!spot.pixel.allFinite()) {
+      throw ErrorAt("laser ", name, ": ", spot.image,
+                    ": the spot's pixel is not finite");
+    }
+    const Eigen::Vector3d ray = CameraModelCamFromImg(
+        camera.model_id, camera.params.data(), spot.pixel);
+    const Eigen::Vector3d normal = spot.cam_from_board.RotationMatrix().col(2);
+    const double along = normal.dot(ray.normalized());
+    if (std::abs(along) < 1e-3) {
+      throw ErrorAt("laser ", name, ": ", spot.image,
+                    ": the spot's ray runs along the board");
+    }
+    const double s =
+        normal.dot(spot.cam_from_board.translation) / normal.dot(ray);
+    if (!(s > 0.0)) {
+      throw ErrorAt("laser ", name, ": ", spot.image,
+                    ": the board is behind the camera");
+    }
+    fit.points_in_cam.push_back(s * ray);
+  }
+  const int n = static_cast<int>(fit.points_in_cam.size());
+  if (n < options.min_distances) {
+    throw ErrorAt("laser ", name, ": ", n, " spots; a line needs at least ",
+                  options.min_distances, " board distances");
+  }
+
+  // RANSAC on pairs far enough apart in depth to define a direction.
+  SplitMix64Stream random(options.seed);
+  fit.inliers.assign(n, false);
+  int best_count = -1;
+  for (int iteration = 0; iteration < options.ransac_iterations; ++iteration) {
+    const int i = static_cast<int>(random.Next() % n);
+    const int j = static_cast<int>(random.Next() % n);
+    const Eigen::Vector3d& a = fit.points_in_cam[i];
+    const Eigen::Vector3d& b = fit.points_in_cam[j];
+    if (std::abs(a.z() - b.z()) < 0.5 * options.min_depth_span_m) continue;
+    const Eigen::Vector3d d = (b - a).normalized();
+    std::vector<bool> inliers(n);
+    int count = 0;
+    for (int k = 0; k < n; ++k) {
+      inliers[k] = DistanceFromLine(fit.points_in_cam[k], a, d) <=
+                   options.inlier_distance_m;
+      count += inliers[k];
+    }
+    if (count > best_count) {
+      best_count = count;
+      fit.inliers = inliers;
+    }
+  }
+  double min_z = std::numeric_limits<double>::infinity();
+  double max_z = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < n; ++k) {
+    if (!fit.inliers[k]) continue;
+    min_z = std::min(min_z, fit.points_in_cam[k].z());
+    max_z = std::max(max_z, fit.points_in_cam[k].z());
+  }
+  if (best_count < options.min_distances ||
+      max_z - min_z < options.min_depth_span_m) {
+    throw ErrorAt("laser ", name, ": the spots do not line up over ",
+                  options.min_depth_span_m, " m of depth (",
+                  std::max(best_count, 0), " of ", n,
+                  " within the inlier distance); move the board further "
+                  "between images");
+  }
+
+  // x = Ox + a z and y = Oy + b z by weighted least squares on the inliers.
+  // A point's error grows with its depth (the spot's angular noise, and the
+  // board pose's), so each is weighted by 1/z^2 (sigma proportional to z).
+  Eigen::MatrixXd design(best_count, 2);
+  Eigen::VectorXd xs(best_count);
+  Eigen::VectorXd ys(best_count);
+  Eigen::VectorXd weights(best_count);
+  for (int k = 0, row = 0; k < n; ++k) {
+    if (!fit.inliers[k]) continue;
+    const Eigen::Vector3d& point = fit.points_in_cam[k];
+    design.row(row) << 1.0, point.z();
+    xs(row) = point.x();
+    ys(row) = point.y();
+    weights(row) = 1.0 / (point.z() * point.z());
+    ++row;
+  }
+  const Eigen::MatrixXd weighted_design_t =
+      design.transpose() * weights.asDiagonal();
+  const Eigen::Matrix2d normal_inverse = (weighted_design_t * design).inverse();
+  const Eigen::Vector2d x_fit = normal_inverse * weighted_design_t * xs;
+  const Eigen::Vector2d y_fit = normal_inverse * weighted_design_t * ys;
+  const Eigen::VectorXd x_residuals = design * x_fit - xs;
+  const Eigen::VectorXd y_residuals = design * y_fit - ys;
+  const double weighted_squares =
+      x_residuals.dot(weights.asDiagonal() * x_residuals) +
+      y_residuals.dot(weights.asDiagonal() * y_residuals);
+  const int dof = 2 * best_count - 4;
+  const double variance = dof > 0 ? weighted_squares / dof : 0.0;
+  fit.rms_distance_m = std::sqrt(
+      (x_residuals.squaredNorm() + y_residuals.squaredNorm()) / best_count);
+
+  Laser& laser = fit.laser;
+  laser.origin_in_cam = Eigen::Vector3d(x_fit(0), y_fit(0), 0.0);
+  const Eigen::Vector3d slope(x_fit(1), y_fit(1), 1.0);
+  laser.direction_in_cam = slope.normalized();
+  // Covariances of (Ox, a) and (Oy, b); x and y are fitted independently.
+  const Eigen::Matrix2d parameter_cov = variance * normal_inverse;
+  laser.origin_cov.setZero();
+  laser.origin_cov(0, 0) = parameter_cov(0, 0);
+  laser.origin_cov(1, 1) = parameter_cov(0, 0);
+  // The unit direction's covariance through d = s / |s|, s = (a, b, 1).
+  const double norm = slope.norm();
+  const Eigen::Matrix3d unit_jacobian =
+      (Eigen::Matrix3d::Identity() -
+       laser.direction_in_cam * laser.direction_in_cam.transpose()) /
+      norm;
+  Eigen::Matrix3d slope_cov = Eigen::Matrix3d::Zero();
+  slope_cov(0, 0) = parameter_cov(1, 1);
+  slope_cov(1, 1) = parameter_cov(1, 1);
+  laser.direction_cov = unit_jacobian * slope_cov * unit_jacobian.transpose();
+  laser.direction_cov =
+      0.5 * (laser.direction_cov + laser.direction_cov.transpose());
+  return fit;
+}
+
+}  // namespace uw

@@ -1,0 +1,57 @@
+// A laser's line in the camera frame from its spots on a calibration board
+// at many distances (thesis ch. 3 §2.4 [L2196-L2220]): each spot's ray is
+// cut with the board's plane (its pose from its corners), and a line is
+// fitted robustly to the 3D points. The result is what lasers.json stores:
+// the origin where the line meets the camera plane Π (z = 0), the unit
+// direction, and their covariances.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "colmap_plugins/scene/model.h"
+#include "laserscale/laser_setup.h"
+
+namespace uw {
+
+// One spot of the laser on the board in one image.
+struct LaserBoardSpot {
+  std::string image;
+  Rigid3d cam_from_board;  // the board's pose (z = 0 is its surface)
+  Eigen::Vector2d pixel;   // the spot's centre, COLMAP pixel convention
+};
+
+struct LaserLineFitOptions {
+  // RANSAC on pairs of points: a point further than this from the line
+  // through two others is an outlier (metres; a bad spot or board pose).
+  double inlier_distance_m = 0.005;
+  int ransac_iterations = 500;
+  uint64_t seed = 0;
+  // Spots must span at least this range of depths (the direction's
+  // lever arm) and come from at least min_distances images.
+  double min_depth_span_m = 0.5;
+  int min_distances = 3;
+
+  void Check() const;
+};
+
+struct LaserLineFit {
+  Laser laser;  // name, origin_in_cam (z = 0), direction_in_cam, covariances
+  std::vector<Eigen::Vector3d> points_in_cam;  // per spot, in input order
+  std::vector<bool> inliers;
+  double rms_distance_m = 0.0;  // inliers' distance from the line
+};
+
+// Fits x = Ox + a z, y = Oy + b z to the RANSAC inliers by least squares
+// weighted by 1/z^2 (a point's error grows with its depth); the covariances
+// are those of the fit, its residual variance estimated from the data
+// (2 n - 4 degrees of freedom). Throws uw::Error naming the
+// laser for too few spots or depths, a ray parallel to a board, or a board
+// behind the camera.
+LaserLineFit FitLaserLine(const std::string& name, const Camera& camera,
+                          const std::vector<LaserBoardSpot>& spots,
+                          const LaserLineFitOptions& options);
+
+}  // namespace uw
