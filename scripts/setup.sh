@@ -24,6 +24,8 @@ packages=(
   # mrcal 2.2: the C library uwcalib calibrates with, and its tools
   # (mrcal-calibrate-cameras, run by /usr/bin/python3) that tests compare with
   libmrcal-dev mrcal python3-mrcal
+  # AprilTag 3: tags and Kalibr AprilGrids for uwcalib
+  libapriltag-dev
 )
 
 missing=()
