@@ -49,9 +49,15 @@ int ParseCount(const std::string& text, const std::string& spec,
 std::vector<Eigen::Vector3d> CalibrationBoard::CornersInBoard() const {
   std::vector<Eigen::Vector3d> corners;
   corners.reserve(NumCorners());
+  // Kalibr: corner c of a row lies at (c / 2) tag pitches plus one tag
+  // side for the tag's right (upper) corners.
+  const auto position = [&](int c) {
+    if (kind == BoardKind::kChessboard) return c * spacing_m;
+    return (c / 2) * (1.0 + tag_gap) * spacing_m + (c % 2) * spacing_m;
+  };
   for (int j = 0; j < grid_height; ++j) {
     for (int i = 0; i < grid_width; ++i) {
-      corners.emplace_back(i * spacing_m, j * spacing_m, 0.0);
+      corners.emplace_back(position(i), position(j), 0.0);
     }
   }
   return corners;
@@ -60,21 +66,28 @@ std::vector<Eigen::Vector3d> CalibrationBoard::CornersInBoard() const {
 std::string CalibrationBoard::ToString() const {
   std::ostringstream text;
   text.precision(17);
-  text << "chessboard:" << grid_width << "x" << grid_height << ":" << spacing_m;
+  if (kind == BoardKind::kAprilGrid) {
+    text << "aprilgrid:" << grid_width / 2 << "x" << grid_height / 2 << ":"
+         << spacing_m << ":" << tag_gap;
+  } else {
+    text << "chessboard:" << grid_width << "x" << grid_height << ":"
+         << spacing_m;
+  }
   return text.str();
 }
 
 CalibrationBoard ParseBoard(const std::string& spec) {
   const std::vector<std::string> fields = SplitAt(spec, ':');
-  if (fields.empty() || fields[0] != "chessboard") {
-    throw ErrorAt("--board ", spec,
-                  ": expected chessboard:COLSxROWS:SQUARE_M (inner corners, "
-                  "square side in metres), e.g. chessboard:9x6:0.025");
-  }
-  if (fields.size() != 3) {
-    throw ErrorAt("--board ", spec,
-                  ": a chessboard is chessboard:COLSxROWS:SQUARE_M, e.g. "
-                  "chessboard:9x6:0.025");
+  const char* kExpected =
+      ": expected chessboard:COLSxROWS:SQUARE_M (inner corners, square side "
+      "in metres; e.g. chessboard:9x6:0.025) or aprilgrid:COLSxROWS:TAG_M:GAP "
+      "(Kalibr's tags, tag side in metres, gap / tag side; e.g. "
+      "aprilgrid:6x6:0.088:0.3)";
+  const bool chessboard = !fields.empty() && fields[0] == "chessboard";
+  const bool aprilgrid = !fields.empty() && fields[0] == "aprilgrid";
+  if ((!chessboard && !aprilgrid) || (chessboard && fields.size() != 3) ||
+      (aprilgrid && fields.size() != 4)) {
+    throw ErrorAt("--board ", spec, kExpected);
   }
   const std::vector<std::string> size = SplitAt(fields[1], 'x');
   if (size.size() != 2) {
@@ -82,12 +95,24 @@ CalibrationBoard ParseBoard(const std::string& spec) {
                   fields[1], "'");
   }
   CalibrationBoard board;
-  board.kind = BoardKind::kChessboard;
-  board.grid_width = ParseCount(size[0], spec, "COLS (inner corners per row)");
-  board.grid_height = ParseCount(size[1], spec, "ROWS (rows of inner corners)");
-  board.spacing_m = ParseNumber(fields[2], spec, "SQUARE_M");
+  board.kind = chessboard ? BoardKind::kChessboard : BoardKind::kAprilGrid;
+  const int cols = ParseCount(size[0], spec, "COLS");
+  const int rows = ParseCount(size[1], spec, "ROWS");
+  const int per_cell = chessboard ? 1 : 2;  // an AprilGrid's tags: 2x2
+  board.grid_width = per_cell * cols;
+  board.grid_height = per_cell * rows;
+  board.spacing_m =
+      ParseNumber(fields[2], spec, chessboard ? "SQUARE_M" : "TAG_M");
   if (board.spacing_m <= 0.0) {
-    throw ErrorAt("--board ", spec, ": SQUARE_M must be positive");
+    throw ErrorAt("--board ", spec, ": the size in metres must be positive");
+  }
+  if (aprilgrid) {
+    board.tag_gap = ParseNumber(fields[3], spec, "GAP");
+    if (board.tag_gap <= 0.0 || board.tag_gap >= 1.0) {
+      throw ErrorAt("--board ", spec,
+                    ": GAP (between tags, a fraction of the tag side) must "
+                    "be in (0, 1)");
+    }
   }
   return board;
 }

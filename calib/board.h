@@ -17,25 +17,37 @@ namespace uw {
 enum class BoardKind {
   // A chessboard, counted by its inner corners (OpenCV's patternSize).
   kChessboard,
+  // Kalibr's AprilGrid: cols x rows tag36h11 tags (2-cell black border) of
+  // side spacing_m, tag_gap x spacing_m apart; tag t in row t / cols from
+  // the bottom, column t % cols. Its corners are each tag's four, a
+  // (2 cols) x (2 rows) grid in Kalibr's order: not evenly spaced.
+  kAprilGrid,
 };
 
 struct CalibrationBoard {
   BoardKind kind = BoardKind::kChessboard;
-  int grid_width = 0;   // corners per row
-  int grid_height = 0;  // rows of corners
-  double spacing_m = 0.0;
+  int grid_width = 0;      // corners per row
+  int grid_height = 0;     // rows of corners
+  double spacing_m = 0.0;  // square side; an AprilGrid's tag side
+  double tag_gap = 0.0;    // AprilGrid: gap between tags / tag side
+
+  // Corners evenly spaced by spacing_m (what mrcal's board model is).
+  bool IsRegularGrid() const { return kind == BoardKind::kChessboard; }
 
   int NumCorners() const { return grid_width * grid_height; }
 
   // Corner positions on the board, mrcal's order.
   std::vector<Eigen::Vector3d> CornersInBoard() const;
 
-  // The spec string that ParseBoard reads back, e.g. "chessboard:9x6:0.025".
+  // The spec string that ParseBoard reads back, e.g. "chessboard:9x6:0.025"
+  // or "aprilgrid:6x6:0.088:0.3".
   std::string ToString() const;
 };
 
 // Parses a --board value:
 //   chessboard:COLSxROWS:SQUARE_M   inner corners per row x rows, square side
+//   aprilgrid:COLSxROWS:TAG_M:GAP   Kalibr's tags per row x rows, tag side,
+//                                   gap between tags as a fraction of it
 // Throws uw::Error saying what was expected.
 CalibrationBoard ParseBoard(const std::string& spec);
 

@@ -21,12 +21,30 @@ TEST(ParseBoard, ChessboardCornersAreMrcalsGrid) {
   EXPECT_EQ(board.ToString(), "chessboard:9x6:0.025000000000000001");
 }
 
+TEST(ParseBoard, AprilGridCornersAreKalibrs) {
+  const CalibrationBoard board = ParseBoard("aprilgrid:6x6:0.088:0.3");
+  EXPECT_EQ(board.kind, BoardKind::kAprilGrid);
+  EXPECT_FALSE(board.IsRegularGrid());
+  EXPECT_EQ(board.grid_width, 12);
+  EXPECT_EQ(board.grid_height, 12);
+  const std::vector<Eigen::Vector3d> corners = board.CornersInBoard();
+  // Tag 0's corners 0, 1, 13, 12 (lower left, lower right, upper right,
+  // upper left), tag 1 one pitch (1.3 tag sides) to the right.
+  EXPECT_TRUE(corners[1].isApprox(Eigen::Vector3d(0.088, 0.0, 0.0)));
+  EXPECT_TRUE(corners[13].isApprox(Eigen::Vector3d(0.088, 0.088, 0.0)));
+  EXPECT_TRUE(corners[2].isApprox(Eigen::Vector3d(1.3 * 0.088, 0.0, 0.0)));
+  EXPECT_TRUE(corners[143].isApprox(
+      Eigen::Vector3d(5 * 1.3 * 0.088 + 0.088, 5 * 1.3 * 0.088 + 0.088, 0)));
+  EXPECT_EQ(ParseBoard(board.ToString()).tag_gap, 0.3);
+}
+
 TEST(ParseBoard, RejectsMalformedSpecsSayingWhatIsExpected) {
   for (const char* spec :
        {"", "chessboard", "chessboard:9x6", "chessboard:9:0.02",
         "chessboard:9x6:0", "chessboard:9x6:-1", "chessboard:9x6:abc",
         "chessboard:1x6:0.02", "chessboard:9.5x6:0.02", "chessboard:9x6:nan",
-        "chessboard:9x6:0.02:1", "checkerboard:9x6:0.02"}) {
+        "chessboard:9x6:0.02:1", "checkerboard:9x6:0.02", "aprilgrid:6x6:0.088",
+        "aprilgrid:6x6:0.088:1.5", "aprilgrid:6x6:0.088:0"}) {
     try {
       ParseBoard(spec);
       ADD_FAILURE() << "accepted '" << spec << "'";

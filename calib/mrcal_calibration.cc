@@ -207,6 +207,12 @@ MrcalRigCalibration CalibrateRigWithMrcal(
     const MrcalCalibrationOptions& options) {
   options.Check();
   if (cameras.empty()) throw Error("calibration: no camera");
+  if (!board.IsRegularGrid()) {
+    throw ErrorAt("calibration: ", board.ToString(),
+                  ": mrcal 2.2 models a board as evenly spaced corners; an "
+                  "AprilGrid's are not (calibrating with AprilGrids is not "
+                  "done yet)");
+  }
   const mrcal_lensmodel_t model = LensModel(options.lens_model);
   const int num_params = mrcal_lensmodel_num_params(&model);
   const std::vector<Eigen::Vector3d> corners = board.CornersInBoard();

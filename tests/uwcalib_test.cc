@@ -129,6 +129,36 @@ TEST(Uwcalib, CalibratesTheStereoPair) {
   EXPECT_NEAR(right.rt_cam_ref.tail<3>().norm(), 3.3267 * 0.025, 0.0005);
 }
 
+// Kalibr AprilGrids into corners.vnl (Kalibr's corner order, '-' for the
+// corners of missing tags); mrcal 2.2 cannot calibrate on them yet, and
+// calibrate says so.
+TEST(Uwcalib, DetectsAprilGridsAndRefusesToCalibrateOnThemYet) {
+  const fs::path dir = FreshTestDir("uw_uwcalib_test");
+  std::ofstream(dir / "grids.txt") << "EuRoC.png\nTUM_VI.png\n";
+  const fs::path images = fs::path(UW_REALDATA_DIR) / "aprilgrid_samples" /
+                          "powei-lin_aprilgrid-rs_tests";
+  auto result = RunProcess(
+      kUwcalib.string() + " detect --board aprilgrid:6x6:0.088:0.3 --images " +
+          Quoted(images) + " --image_list_path " + Quoted(dir / "grids.txt") +
+          " --out " + Quoted(dir / "corners.vnl"),
+      true);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const CornersVnl corners =
+      ReadCornersVnl((dir / "corners.vnl").string(), 144);
+  ASSERT_EQ(corners.observations.size(), 2u);
+  EXPECT_GE(corners.observations[0].NumFoundCorners(), 140);
+  result = RunProcess(
+      kUwcalib.string() +
+          " calibrate --board aprilgrid:6x6:0.088:0.3 --corners " +
+          Quoted(dir / "corners.vnl") +
+          " --focal 460 --imagersize 752,480 --out " + Quoted(dir / "cal"),
+      true);
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("AprilGrid's are not"), std::string::npos)
+      << result.output;
+  EXPECT_FALSE(fs::exists(dir / "cal"));
+}
+
 TEST(Uwcalib, BadInputIsRefusedAndNothingIsWritten) {
   const fs::path dir = FreshTestDir("uw_uwcalib_test");
   // Images without the board (the board asked for is not the one shown).

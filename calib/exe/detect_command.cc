@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "calib/aprilgrid_detector.h"
 #include "calib/board.h"
 #include "calib/chessboard_detector.h"
 #include "calib/corners_vnl.h"
@@ -23,8 +24,9 @@ int RunCalibDetect(int argc, char** argv) {
       "mrcal-calibrate-cameras --corners-cache reads): the board's "
       "corners in mrcal's order, pixels with (0, 0) at the centre of the "
       "top-left pixel, level 0, and one row 'NAME - - -' for an image "
-      "without the whole board. Chessboards are found by OpenCV's "
-      "sector-based detector (docs/uwcalib.md).\n\n"
+      "without the board. Chessboards are found by OpenCV's sector-based "
+      "detector (whole boards only), Kalibr AprilGrids by libapriltag "
+      "(any tags; corners of missing tags are '-') (docs/uwcalib.md).\n\n"
       "Example:\n"
       "  uwcalib detect --board chessboard:9x6:0.025 --images calib "
       "--out corners.vnl",
@@ -35,7 +37,8 @@ int RunCalibDetect(int argc, char** argv) {
   std::string out;
   int num_threads = 0;
   app.add_option("--board", board_spec,
-                 "chessboard:COLSxROWS:SQUARE_M (inner corners, metres)")
+                 "chessboard:COLSxROWS:SQUARE_M (inner corners, metres) or "
+                 "aprilgrid:COLSxROWS:TAG_M:GAP (Kalibr)")
       ->required();
   app.add_option("--images", images_dir, "Folder of the calibration images")
       ->required();
@@ -67,7 +70,10 @@ int RunCalibDetect(int argc, char** argv) {
         if (image.empty()) {
           throw ErrorAt(path.string(), ": cannot read the image");
         }
-        observations[i] = DetectChessboard(image, board, names[i]);
+        observations[i] =
+            board.kind == BoardKind::kAprilGrid
+                ? DetectAprilGrid(image, board, names[i], AprilGridOptions())
+                : DetectChessboard(image, board, names[i]);
         const int finished = ++done;
         if (finished % 10 == 0 || finished == static_cast<int>(names.size())) {
           std::fprintf(stderr, "[detect] %d/%zu images\n", finished,
