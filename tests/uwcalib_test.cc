@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "calib/corners_vnl.h"
 #include "calib/mrcal_calibration.h"
@@ -55,7 +57,13 @@ TEST(Uwcalib, DetectAndCalibrateTheLeftCamera) {
       ReadCameraModel((dir / "cal" / "camera-0.cameramodel").string());
   EXPECT_EQ(model.lens_model, "LENSMODEL_OPENCV5");
   EXPECT_NEAR(model.intrinsics[0], 533.1, 1.0);  // OpenCV: 531.9
-  EXPECT_TRUE(fs::exists(dir / "cal" / "calibration.json"));
+  const nlohmann::json report =
+      nlohmann::json::parse(std::ifstream(dir / "cal" / "calibration.json"));
+  EXPECT_EQ(report["cameras"][0]["images"].size(), 13u);
+  EXPECT_EQ(report["lens_model"], "LENSMODEL_OPENCV5");
+  for (const char* plot : {"residuals.png", "residuals_per_image.png"}) {
+    EXPECT_FALSE(cv::imread((dir / "cal" / plot).string()).empty()) << plot;
+  }
 
   // The camera into a COLMAP model that stock colmap reads: its text has
   // the camera, cx and cy moved by +0.5 to COLMAP's pixel centres.

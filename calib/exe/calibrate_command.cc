@@ -6,9 +6,8 @@
 #include <filesystem>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
 #include "calib/board.h"
+#include "calib/calibration_report.h"
 #include "calib/corners_vnl.h"
 #include "calib/exe/commands.h"
 #include "calib/mrcal_calibration.h"
@@ -147,72 +146,7 @@ int RunCalibrate(int argc, char** argv) {
     command << "uwcalib calibrate --board " << board.ToString()
             << " --lens_model " << options.lens_model;
     const std::filesystem::path dir(out);
-    std::vector<PendingFile> files;
-    nlohmann::json json_cameras = nlohmann::json::array();
-    for (size_t c = 0; c < result.cameras.size(); ++c) {
-      const MrcalCalibration& camera = result.cameras[c];
-      nlohmann::json images = nlohmann::json::array();
-      for (size_t v = 0; v < camera.images.size(); ++v) {
-        double sum_squares = 0.0;
-        int inliers = 0;
-        for (size_t k = 0; k < camera.residuals_px[v].size(); ++k) {
-          if (camera.outliers[v][k]) continue;
-          sum_squares += camera.residuals_px[v][k].squaredNorm();
-          ++inliers;
-        }
-        images.push_back(
-            {{"image", camera.images[v]},
-             {"rms_px", std::sqrt(sum_squares / std::max(inliers, 1))},
-             {"outliers",
-              static_cast<int>(camera.residuals_px[v].size()) - inliers}});
-      }
-      const Rigid3d& cam_from_rig = result.cam_from_rig[c];
-      const Eigen::Quaterniond& q = cam_from_rig.rotation;
-      json_cameras.push_back(
-          {{"camera", c},
-           {"glob", camera_globs[c]},
-           {"intrinsics", camera.intrinsics},
-           {"cam_from_rig",
-            {{"rotation_wxyz", {q.w(), q.x(), q.y(), q.z()}},
-             {"translation",
-              {cam_from_rig.translation.x(), cam_from_rig.translation.y(),
-               cam_from_rig.translation.z()}}}},
-           {"corners_observed", camera.num_corners_observed},
-           {"outliers", camera.num_outliers},
-           {"images", images}});
-      files.push_back(
-          {dir / ("camera-" + std::to_string(c) + ".cameramodel"),
-           [&, c](std::ostream& stream) {
-             const MrcalCalibration& camera = result.cameras[c];
-             stream << FormatCameraModel(
-                 camera.lens_model, camera.intrinsics, camera.image_width,
-                 camera.image_height, result.cam_from_rig[c],
-                 {"generated with " + command.str(),
-                  "RMS reprojection error: " + std::to_string(result.rms_px) +
-                      " pixels",
-                  "Noutliers: " + std::to_string(camera.num_outliers) +
-                      " out of " +
-                      std::to_string(camera.num_corners_observed)});
-           }});
-    }
-    const nlohmann::json report = {
-        {"lens_model", options.lens_model},
-        {"imagersize", {options.image_width, options.image_height}},
-        {"pixel_convention",
-         "mrcal/OpenCV: (0, 0) is the centre of the top-left pixel"},
-        {"rms_px", result.rms_px},
-        {"rms_px_meaning",
-         "mrcal's: sqrt of the mean square measurement (per coordinate)"},
-        {"outliers", result.num_outliers},
-        {"calobject_warp_m",
-         {result.cameras[0].calobject_warp.x(),
-          result.cameras[0].calobject_warp.y()}},
-        {"units", "board units (SQUARE_M of --board): metres"},
-        {"cameras", json_cameras}};
-    files.push_back({dir / "calibration.json", [&](std::ostream& stream) {
-                       stream << report.dump(1) << "\n";
-                     }});
-    WriteFilesAtomically(files, false);
+    WriteCalibrationReport(result, camera_globs, command.str(), dir);
     for (size_t c = 0; c < result.cameras.size(); ++c) {
       std::printf(
           "[calibrate] camera %zu: %zu views, %d outliers of %d "
