@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "calib/corners_vnl.h"
 #include "colmap_plugins/util/error.h"
 
 namespace uw {
@@ -74,6 +75,65 @@ std::string CalibrationBoard::ToString() const {
          << spacing_m;
   }
   return text.str();
+}
+
+BoardLattice MrcalLattice(const CalibrationBoard& board) {
+  BoardLattice lattice;
+  lattice.regular = board;
+  const int num_corners = board.NumCorners();
+  if (board.IsRegularGrid()) {
+    for (int k = 0; k < num_corners; ++k) lattice.point_of_corner.push_back(k);
+    return lattice;
+  }
+  int q = 1;
+  while (q <= 100 && std::abs(board.tag_gap * q -
+                              std::round(board.tag_gap * q)) > 1e-9 * q) {
+    ++q;
+  }
+  if (q > 100) {
+    throw ErrorAt(board.ToString(), ": GAP ", board.tag_gap,
+                  " is no fraction p/q with q <= 100; mrcal cannot place "
+                  "the corners on an even lattice");
+  }
+  const int pitch = q + static_cast<int>(std::lround(board.tag_gap * q));
+  const auto position = [&](int c) { return (c / 2) * pitch + (c % 2) * q; };
+  const int width = position(board.grid_width - 1) + 1;
+  const int height = position(board.grid_height - 1) + 1;
+  if (width > 400 || height > 400) {
+    throw ErrorAt(board.ToString(), ": its corners need a ", width, " x ",
+                  height, " lattice for mrcal; at most 400 a side");
+  }
+  lattice.regular.kind = BoardKind::kChessboard;
+  lattice.regular.grid_width = width;
+  lattice.regular.grid_height = height;
+  lattice.regular.spacing_m = board.spacing_m / q;
+  lattice.regular.tag_gap = 0.0;
+  for (int k = 0; k < num_corners; ++k) {
+    const int i = k % board.grid_width;
+    const int j = k / board.grid_width;
+    lattice.point_of_corner.push_back(position(j) * width + position(i));
+  }
+  return lattice;
+}
+
+BoardObservation OnLattice(const BoardObservation& observation,
+                           const BoardLattice& lattice) {
+  if (observation.pixels.size() != lattice.point_of_corner.size() ||
+      observation.weights.size() != lattice.point_of_corner.size()) {
+    throw ErrorAt(observation.image, ": ", observation.pixels.size(),
+                  " corners, but the board has ",
+                  lattice.point_of_corner.size());
+  }
+  const int num_points = lattice.regular.NumCorners();
+  BoardObservation on_lattice;
+  on_lattice.image = observation.image;
+  on_lattice.pixels.assign(num_points, Eigen::Vector2d::Zero());
+  on_lattice.weights.assign(num_points, -1.0);
+  for (size_t k = 0; k < lattice.point_of_corner.size(); ++k) {
+    on_lattice.pixels[lattice.point_of_corner[k]] = observation.pixels[k];
+    on_lattice.weights[lattice.point_of_corner[k]] = observation.weights[k];
+  }
+  return on_lattice;
 }
 
 CalibrationBoard ParseBoard(const std::string& spec) {

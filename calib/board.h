@@ -44,6 +44,25 @@ struct CalibrationBoard {
   std::string ToString() const;
 };
 
+// mrcal 2.2's board is evenly spaced points. A chessboard is one; an
+// AprilGrid's corners all lie on a finer one, of spacing tag side / q for
+// the smallest q that makes GAP q whole (0.3: q = 10, a 6x6 grid's corners
+// on 76 x 76 points): mrcal is given that lattice, the points that are no
+// corner marked missing.
+struct BoardLattice {
+  CalibrationBoard regular;          // a chessboard of the lattice
+  std::vector<int> point_of_corner;  // per corner: its lattice point
+};
+// Throws uw::Error when GAP needs q > 100 or the lattice more than 400
+// points a side.
+BoardLattice MrcalLattice(const CalibrationBoard& board);
+
+// An observation of the board's corners as one of its lattice's points
+// (the points that are no corner missing).
+struct BoardObservation;
+BoardObservation OnLattice(const BoardObservation& observation,
+                           const BoardLattice& lattice);
+
 // Parses a --board value:
 //   chessboard:COLSxROWS:SQUARE_M   inner corners per row x rows, square side
 //   aprilgrid:COLSxROWS:TAG_M:GAP   Kalibr's tags per row x rows, tag side,

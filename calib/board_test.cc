@@ -38,6 +38,25 @@ TEST(ParseBoard, AprilGridCornersAreKalibrs) {
   EXPECT_EQ(ParseBoard(board.ToString()).tag_gap, 0.3);
 }
 
+TEST(MrcalLattice, PutsAprilGridCornersOnAnEvenLattice) {
+  const CalibrationBoard grid = ParseBoard("aprilgrid:6x6:0.088:0.3");
+  const BoardLattice lattice = MrcalLattice(grid);
+  EXPECT_EQ(lattice.regular.grid_width, 76);
+  EXPECT_EQ(lattice.regular.grid_height, 76);
+  EXPECT_NEAR(lattice.regular.spacing_m, 0.0088, 1e-15);
+  const std::vector<Eigen::Vector3d> corners = grid.CornersInBoard();
+  const std::vector<Eigen::Vector3d> points = lattice.regular.CornersInBoard();
+  for (size_t k = 0; k < corners.size(); ++k) {
+    EXPECT_LT((points[lattice.point_of_corner[k]] - corners[k]).norm(), 1e-12)
+        << k;
+  }
+  // A chessboard is its own lattice.
+  const CalibrationBoard chessboard = ParseBoard("chessboard:9x6:0.025");
+  EXPECT_EQ(MrcalLattice(chessboard).regular.NumCorners(), 54);
+  EXPECT_EQ(MrcalLattice(chessboard).point_of_corner[53], 53);
+  EXPECT_THROW(MrcalLattice(ParseBoard("aprilgrid:6x6:0.088:0.3183")), Error);
+}
+
 TEST(ParseBoard, RejectsMalformedSpecsSayingWhatIsExpected) {
   for (const char* spec :
        {"", "chessboard", "chessboard:9x6", "chessboard:9:0.02",

@@ -202,17 +202,12 @@ void MrcalCalibrationOptions::Check() const {
   }
 }
 
-MrcalRigCalibration CalibrateRigWithMrcal(
+// CalibrateRigWithMrcal on a board of evenly spaced corners.
+static MrcalRigCalibration CalibrateRigOnRegularBoard(
     const std::vector<RigCameraViews>& cameras, const CalibrationBoard& board,
     const MrcalCalibrationOptions& options) {
   options.Check();
   if (cameras.empty()) throw Error("calibration: no camera");
-  if (!board.IsRegularGrid()) {
-    throw ErrorAt("calibration: ", board.ToString(),
-                  ": mrcal 2.2 models a board as evenly spaced corners; an "
-                  "AprilGrid's are not (calibrating with AprilGrids is not "
-                  "done yet)");
-  }
   const mrcal_lensmodel_t model = LensModel(options.lens_model);
   const int num_params = mrcal_lensmodel_num_params(&model);
   const std::vector<Eigen::Vector3d> corners = board.CornersInBoard();
@@ -407,6 +402,59 @@ MrcalRigCalibration CalibrateRigWithMrcal(
     camera.residuals_px.push_back(std::move(residuals));
     camera.outliers.push_back(std::move(outliers));
   }
+  return result;
+}
+
+// The RMS of the inlier corners' residuals per coordinate. mrcal's own
+// divides by every board point, found or not, which on an AprilGrid's
+// lattice (mostly points that are no corner) would read 7x too small.
+double InlierRmsPerCoordinate(const MrcalRigCalibration& result) {
+  double sum_squares = 0.0;
+  int count = 0;
+  for (const MrcalCalibration& camera : result.cameras) {
+    for (size_t v = 0; v < camera.residuals_px.size(); ++v) {
+      for (size_t k = 0; k < camera.residuals_px[v].size(); ++k) {
+        if (camera.outliers[v][k]) continue;
+        sum_squares += camera.residuals_px[v][k].squaredNorm();
+        ++count;
+      }
+    }
+  }
+  return std::sqrt(sum_squares / std::max(2 * count, 1));
+}
+
+MrcalRigCalibration CalibrateRigWithMrcal(
+    const std::vector<RigCameraViews>& cameras, const CalibrationBoard& board,
+    const MrcalCalibrationOptions& options) {
+  MrcalRigCalibration result;
+  if (board.IsRegularGrid()) {
+    result = CalibrateRigOnRegularBoard(cameras, board, options);
+  } else {
+    // mrcal sees the corners on their lattice, the other points missing;
+    // the results come back per corner.
+    const BoardLattice lattice = MrcalLattice(board);
+    std::vector<RigCameraViews> on_lattice = cameras;
+    for (RigCameraViews& camera : on_lattice) {
+      for (BoardObservation& view : camera.views) {
+        if (view.Found()) view = OnLattice(view, lattice);
+      }
+    }
+    result = CalibrateRigOnRegularBoard(on_lattice, lattice.regular, options);
+    for (MrcalCalibration& camera : result.cameras) {
+      for (size_t v = 0; v < camera.residuals_px.size(); ++v) {
+        std::vector<Eigen::Vector2d> residuals;
+        std::vector<bool> outliers;
+        for (const int point : lattice.point_of_corner) {
+          residuals.push_back(camera.residuals_px[v][point]);
+          outliers.push_back(camera.outliers[v][point]);
+        }
+        camera.residuals_px[v] = std::move(residuals);
+        camera.outliers[v] = std::move(outliers);
+      }
+    }
+  }
+  result.rms_px = InlierRmsPerCoordinate(result);
+  for (MrcalCalibration& camera : result.cameras) camera.rms_px = result.rms_px;
   return result;
 }
 

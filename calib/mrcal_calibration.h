@@ -42,7 +42,10 @@ struct MrcalCalibration {
   std::vector<std::vector<Eigen::Vector2d>> residuals_px;
   std::vector<std::vector<bool>> outliers;
 
-  double rms_px = 0.0;  // mrcal's RMS of the final solve's measurements
+  // RMS of the inlier corners' residuals per coordinate (what mrcal reports
+  // on a chessboard; mrcal's own figure would count an AprilGrid lattice's
+  // empty points too).
+  double rms_px = 0.0;
   int num_corners_observed = 0;  // found by the detector
   int num_outliers = 0;          // thrown out by the solve
   Eigen::Vector2d calobject_warp = Eigen::Vector2d::Zero();  // x2, y2 (m)
@@ -79,7 +82,8 @@ struct MrcalRigCalibration {
 // several globs: the intrinsics of each, and their poses. The extrinsics
 // are seeded from the frames each camera shares with camera 0 (an error if
 // it shares none); the stages are those of CalibrateWithMrcal. All cameras
-// have options' image size.
+// have options' image size. An AprilGrid goes to mrcal on its lattice
+// (MrcalLattice); residuals and outliers come back per corner.
 MrcalRigCalibration CalibrateRigWithMrcal(
     const std::vector<RigCameraViews>& cameras, const CalibrationBoard& board,
     const MrcalCalibrationOptions& options);
