@@ -4,7 +4,11 @@
 #include <map>
 
 #include <Eigen/LU>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include <apriltag/apriltag.h>
+#include <apriltag/tag36h11.h>
 
 #include "calib/apriltag_detector.h"
 #include "colmap_plugins/util/error.h"
@@ -31,6 +35,140 @@ void UndoDilation(AprilTagDetection* tag) {
     moved[k] = corner + normals.inverse() * Eigen::Vector2d(1.0, 1.0);
   }
   tag->corners = moved;
+}
+
+// Kalibr's position of corner index `k` of the grid, in tag sides.
+Eigen::Vector2d CornerInBoard(const CalibrationBoard& board, int k) {
+  const auto position = [&](int c) {
+    return (c / 2) * (1.0 + board.tag_gap) + (c % 2);
+  };
+  return {position(k % board.grid_width), position(k / board.grid_width)};
+}
+
+// The corner indices of tag `id`: libapriltag's order (lower left, lower
+// right, upper right, upper left).
+std::array<int, 4> TagCorners(const CalibrationBoard& board, int id) {
+  const int cols = board.grid_width / 2;
+  const int lower_left = 2 * (id / cols) * board.grid_width + 2 * (id % cols);
+  return {lower_left, lower_left + 1, lower_left + board.grid_width + 1,
+          lower_left + board.grid_width};
+}
+
+// The bits a tag at `corners` shows, read as libapriltag reads them (cell
+// centres through the tag's homography, threshold halfway between its
+// black border and the white just outside it), against tag `id`'s code:
+// the number of bits that differ.
+int CodeDistance(const cv::Mat& grey,
+                 const std::array<Eigen::Vector2d, 4>& corners,
+                 const apriltag_family_t& stock, int id) {
+  const int width = stock.width_at_border + 2;  // Kalibr: 2-cell border
+  std::vector<cv::Point2f> tag = {{-1, 1}, {1, 1}, {1, -1}, {-1, -1}};
+  std::vector<cv::Point2f> image;
+  for (const Eigen::Vector2d& corner : corners) {
+    image.emplace_back(static_cast<float>(corner.x()),
+                       static_cast<float>(corner.y()));
+  }
+  const cv::Mat homography = cv::getPerspectiveTransform(tag, image);
+  const auto sample = [&](double cell_x, double cell_y) {
+    std::vector<cv::Point2f> in = {
+        {static_cast<float>(2.0 * (cell_x / width - 0.5)),
+         static_cast<float>(2.0 * (cell_y / width - 0.5))}};
+    std::vector<cv::Point2f> out;
+    cv::perspectiveTransform(in, out, homography);
+    cv::Mat pixel;
+    cv::getRectSubPix(grey, cv::Size(1, 1), out[0], pixel, CV_32F);
+    return static_cast<double>(pixel.at<float>(0, 0));
+  };
+  double black = 0.0;
+  double white = 0.0;
+  int count = 0;
+  for (int i = 2; i < width - 2; ++i) {
+    const double c = i + 0.5;
+    black += sample(0.5, c) + sample(width - 0.5, c) + sample(c, 0.5) +
+             sample(c, width - 0.5);
+    white += sample(-0.5, c) + sample(width + 0.5, c) + sample(c, -0.5) +
+             sample(c, width + 0.5);
+    count += 4;
+  }
+  const double threshold = 0.5 * (black + white) / count;
+  if (white <= black) return static_cast<int>(stock.nbits);
+  uint64_t code = 0;
+  for (uint32_t i = 0; i < stock.nbits; ++i) {
+    code = (code << 1) | (sample(stock.bit_x[i] + 1 + 0.5,
+                                 stock.bit_y[i] + 1 + 0.5) > threshold
+                              ? 1
+                              : 0);
+  }
+  return __builtin_popcountll(code ^ stock.codes[id]);
+}
+
+// Grid completion: each missing tag with found neighbours (2 tags within
+// one row and column, else within two) is predicted by the homography of
+// their corners, and kept
+// if the image there shows its code (at most 2 bits off, as libapriltag
+// accepts). Repeated while tags are added.
+void CompleteGrid(const cv::Mat& grey, const CalibrationBoard& board,
+                  std::map<int, AprilTagDetection>* found) {
+  apriltag_family_t* stock = tag36h11_create();
+  const int cols = board.grid_width / 2;
+  const int rows = board.grid_height / 2;
+  bool added = true;
+  while (added) {
+    added = false;
+    for (int id = 0; id < cols * rows; ++id) {
+      if (found->count(id) != 0) continue;
+      // The nearest ring of found tags that has at least 2 of them: a local
+      // homography (lenses bend the grid).
+      std::vector<cv::Point2f> in_board;
+      std::vector<cv::Point2f> in_image;
+      for (int radius = 1; radius <= 2 && in_board.size() < 8; ++radius) {
+        in_board.clear();
+        in_image.clear();
+        for (const auto& [other, tag] : *found) {
+          if (std::abs(other / cols - id / cols) > radius ||
+              std::abs(other % cols - id % cols) > radius) {
+            continue;
+          }
+          const std::array<int, 4> indices = TagCorners(board, other);
+          for (int k = 0; k < 4; ++k) {
+            const Eigen::Vector2d position = CornerInBoard(board, indices[k]);
+            in_board.emplace_back(static_cast<float>(position.x()),
+                                  static_cast<float>(position.y()));
+            in_image.emplace_back(static_cast<float>(tag.corners[k].x()),
+                                  static_cast<float>(tag.corners[k].y()));
+          }
+        }
+      }
+      if (in_board.size() < 8) continue;  // 2 tags at least
+      const cv::Mat homography = cv::findHomography(in_board, in_image, 0);
+      if (homography.empty()) continue;
+      const std::array<int, 4> indices = TagCorners(board, id);
+      std::vector<cv::Point2f> positions;
+      for (const int index : indices) {
+        const Eigen::Vector2d position = CornerInBoard(board, index);
+        positions.emplace_back(static_cast<float>(position.x()),
+                               static_cast<float>(position.y()));
+      }
+      std::vector<cv::Point2f> predicted;
+      cv::perspectiveTransform(positions, predicted, homography);
+      AprilTagDetection tag;
+      tag.id = id;
+      bool inside = true;
+      for (int k = 0; k < 4; ++k) {
+        tag.corners[k] = Eigen::Vector2d(predicted[k].x, predicted[k].y);
+        inside = inside && predicted[k].x > 2 && predicted[k].y > 2 &&
+                 predicted[k].x < grey.cols - 3 &&
+                 predicted[k].y < grey.rows - 3;
+      }
+      if (!inside) continue;
+      const int distance = CodeDistance(grey, tag.corners, *stock, id);
+      if (distance > 2) continue;
+      tag.hamming = distance;
+      found->emplace(id, tag);
+      added = true;
+    }
+  }
+  tag36h11_destroy(stock);
 }
 
 }  // namespace
@@ -85,6 +223,7 @@ BoardObservation DetectAprilGrid(const cv::Mat& image,
       found.emplace(tag.id, tag);
     }
   }
+  if (static_cast<int>(found.size()) >= 3) CompleteGrid(grey, board, &found);
   if (num_tags != nullptr) *num_tags = static_cast<int>(found.size());
 
   BoardObservation observation;

@@ -28,8 +28,10 @@ struct AprilGridOptions {
 // Each tag gives its 4 corners at their place in Kalibr's order; the rest
 // are missing (weight -1). 8-bit grey or BGR. No board (no corners) below
 // min_tags tags. The dilated passes' corners are moved back out by the
-// pixel the dilation took. `num_tags` (if given) gets the tags found.
-// Throws uw::Error for a board that is no AprilGrid.
+// pixel the dilation took. Then grid completion: a missing tag is
+// predicted by the homography of the nearest found ones and kept if the
+// image there shows its code (<= 2 bits off). `num_tags` (if given) gets the
+// tags found. Throws uw::Error for a board that is no AprilGrid.
 BoardObservation DetectAprilGrid(const cv::Mat& image,
                                  const CalibrationBoard& board,
                                  const std::string& image_name,

@@ -16,9 +16,9 @@ namespace fs = std::filesystem;
 
 // The 6x6 grids of the EuRoC and TUM-VI calibration frames (Kalibr's
 // april_6x6: 8.8 cm tags, gap 0.3); aprilgrid-rs expects 36 tags in each.
-// The oblique TUM-VI views (right, r45, top, top_right) need grid
-// completion, which is not done yet: their counts are printed, not
-// asserted.
+// On the oblique TUM-VI views grid completion finds what libapriltag
+// misses: r45 reaches 36; top_right, top and right (tags ~2 px a cell)
+// stay short of it, and the test holds them at what they reach.
 TEST(DetectAprilGrid, FindsTheTagsOfRealKalibrGrids) {
   const fs::path dir = fs::path(UW_REALDATA_DIR) / "aprilgrid_samples" /
                        "powei-lin_aprilgrid-rs_tests";
@@ -29,10 +29,10 @@ TEST(DetectAprilGrid, FindsTheTagsOfRealKalibrGrids) {
     const char* image;
     int at_least;  // asserted
   };
-  for (const Case& c :
-       {Case{"EuRoC.png", 36}, Case{"TUM_VI.png", 36},
-        Case{"1520525725372653511.png", 36}, Case{"right.png", 0},
-        Case{"r45.png", 0}, Case{"top.png", 0}, Case{"top_right.png", 0}}) {
+  for (const Case& c : {Case{"EuRoC.png", 36}, Case{"TUM_VI.png", 36},
+                        Case{"1520525725372653511.png", 36},
+                        Case{"r45.png", 36}, Case{"top_right.png", 35},
+                        Case{"top.png", 30}, Case{"right.png", 20}}) {
     const cv::Mat image =
         cv::imread((dir / c.image).string(), cv::IMREAD_GRAYSCALE);
     ASSERT_FALSE(image.empty()) << c.image;
