@@ -11,6 +11,7 @@
 #include <apriltag/tag36h11.h>
 
 #include "calib/apriltag_detector.h"
+#include "calib/grey_image.h"
 #include "colmap_plugins/util/error.h"
 
 namespace uw {
@@ -192,16 +193,7 @@ BoardObservation DetectAprilGrid(const cv::Mat& image,
   if (board.kind != BoardKind::kAprilGrid) {
     throw ErrorAt(image_name, ": DetectAprilGrid needs an aprilgrid board");
   }
-  if (image.empty() || image.depth() != CV_8U ||
-      (image.channels() != 1 && image.channels() != 3)) {
-    throw ErrorAt(image_name, ": expected an 8-bit grey or BGR image");
-  }
-  cv::Mat grey;
-  if (image.channels() == 3) {
-    cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
-  } else {
-    grey = image;
-  }
+  const cv::Mat grey = GreyImage(image, image_name);
   cv::Mat dilated;
   cv::dilate(grey, dilated, cv::Mat::ones(3, 3, CV_8U));
 

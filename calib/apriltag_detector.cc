@@ -6,8 +6,6 @@
 #include <functional>
 #include <memory>
 
-#include <opencv2/imgproc.hpp>
-
 #include <apriltag/apriltag.h>
 #include <apriltag/tag16h5.h>
 #include <apriltag/tag25h9.h>
@@ -19,6 +17,7 @@
 #include <apriltag/tagStandard41h12.h>
 #include <apriltag/tagStandard52h13.h>
 
+#include "calib/grey_image.h"
 #include "colmap_plugins/util/error.h"
 
 namespace uw {
@@ -117,16 +116,7 @@ void AprilTagOptions::Check() const {
 std::vector<AprilTagDetection> DetectAprilTags(const cv::Mat& image,
                                                const AprilTagOptions& options) {
   options.Check();
-  if (image.empty() || image.depth() != CV_8U ||
-      (image.channels() != 1 && image.channels() != 3)) {
-    throw Error("DetectAprilTags: expected an 8-bit grey or BGR image");
-  }
-  cv::Mat grey;
-  if (image.channels() == 3) {
-    cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
-  } else {
-    grey = image.isContinuous() ? image : image.clone();
-  }
+  const cv::Mat grey = GreyImage(image, "DetectAprilTags");
   // The family lives until the detector is gone: the detector keeps
   // decoding tables in it.
   Family family(FindFamily(options.family), options.border_cells);

@@ -7,6 +7,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "calib/grey_image.h"
 #include "colmap_plugins/util/error.h"
 
 namespace uw {
@@ -72,22 +73,10 @@ double TowardLowerRightScore(const std::vector<Eigen::Vector2d>& corners,
 BoardObservation DetectChessboard(const cv::Mat& image,
                                   const CalibrationBoard& board,
                                   const std::string& image_name) {
-  if (image.empty()) throw ErrorAt(image_name, ": empty image");
   if (board.kind != BoardKind::kChessboard) {
     throw ErrorAt(image_name, ": DetectChessboard needs a chessboard");
   }
-  cv::Mat grey;
-  if (image.channels() == 3) {
-    cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
-  } else if (image.channels() == 1) {
-    grey = image;
-  } else {
-    throw ErrorAt(image_name, ": expected a grey or BGR image, got ",
-                  image.channels(), " channels");
-  }
-  if (grey.depth() != CV_8U) {
-    throw ErrorAt(image_name, ": expected an 8-bit image");
-  }
+  const cv::Mat grey = GreyImage(image, image_name);
   BoardObservation observation;
   observation.image = image_name;
   std::vector<cv::Point2f> found;

@@ -348,7 +348,7 @@ static MrcalRigCalibration CalibrateRigOnRegularBoard(
     stats = problem.Solve(model, true, true, false, options.outlier_rejection,
                           false, board);
   }
-  result.rms_px = stats.rms_reproj_error__pixels;
+  // The RMS is the caller's (InlierRmsPerCoordinate), not mrcal's.
   result.num_outliers = stats.Noutliers - num_missing;
   result.cam_from_rig.assign(num_cameras, Rigid3d());
   for (int c = 1; c < num_cameras; ++c) {
@@ -361,7 +361,6 @@ static MrcalRigCalibration CalibrateRigOnRegularBoard(
     camera.image_height = options.image_height;
     camera.intrinsics.assign(problem.intrinsics.begin() + c * num_params,
                              problem.intrinsics.begin() + (c + 1) * num_params);
-    camera.rms_px = result.rms_px;
     camera.calobject_warp = {problem.warp.x2, problem.warp.y2};
   }
 
