@@ -114,15 +114,22 @@ TEST(CompareWithColmap, BundleAdjusterWithoutPriorsFromPerturbedCameras) {
   ExpectSameSolution("perturbed model", input, adjusted);
   // The perturbation is large enough for the 1e-3 to mean something.
   EXPECT_GT(RelativeCameraRmse(input, adjusted.colmap), 3e-3);
-  // And takes tens of iterations: ours must run them, within colmap's
-  // default budget of 100, to convergence as colmap does.
+  // Ours must run to convergence, as colmap does, within colmap's default
+  // budget of 100 iterations. How many it takes depends on the fixture's
+  // model, which stock colmap's multi-threaded mapper builds a little
+  // differently on each machine (18 and 28 seen), so the travel is checked on
+  // the reprojection error instead: from ~17 px down to colmap's optimum.
   const nlohmann::json report =
       nlohmann::json::parse(ReadFileToString(dir / "ours" / "ba_report.json"));
   std::printf("[ figures ] perturbed model: ours %d iterations, %s\n",
               report["iterations"].get<int>(),
               report["termination"].get<std::string>().c_str());
   EXPECT_EQ(report["termination"], "CONVERGENCE");
-  EXPECT_GT(report["iterations"].get<int>(), 20);
+  EXPECT_GT(report["iterations"].get<int>(), 1);
+  EXPECT_LT(report["iterations"].get<int>(), 100);
+  EXPECT_GT(
+      RecomputeReprojectionErrors(input).mean_observation_error,
+      10 * RecomputeReprojectionErrors(adjusted.ours).mean_observation_error);
 }
 
 // One table row of compare_with_colmap.sh: label, then the numbers.
