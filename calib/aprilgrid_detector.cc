@@ -1,6 +1,8 @@
 #include "calib/aprilgrid_detector.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 
 #include <Eigen/LU>
@@ -162,7 +164,35 @@ void CompleteGrid(const cv::Mat& grey, const CalibrationBoard& board,
                  predicted[k].y < grey.rows - 3;
       }
       if (!inside) continue;
-      const int distance = CodeDistance(grey, tag.corners, *stock, id);
+      // Far from its neighbours a fish-eye bends the grid away from any
+      // homography: the corners are first moved onto the X-junctions they
+      // sit near (in a window of a tenth of the tag, else of a fifth), so
+      // the code is read where the tag is and the next prediction starts
+      // from true corners; the prediction itself is the last try.
+      const double side =
+          cv::norm(predicted[2] - predicted[0]) / std::sqrt(2.0);
+      int distance = static_cast<int>(stock->nbits);
+      for (const double fraction : {0.1, 0.2}) {
+        const int half_window = std::max(2, static_cast<int>(fraction * side));
+        std::vector<cv::Point2f> refined = predicted;
+        cv::cornerSubPix(
+            grey, refined, cv::Size(half_window, half_window), cv::Size(-1, -1),
+            cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT,
+                             30, 1e-3));
+        AprilTagDetection at_junctions = tag;
+        for (int k = 0; k < 4; ++k) {
+          if (cv::norm(refined[k] - predicted[k]) <= half_window) {
+            at_junctions.corners[k] =
+                Eigen::Vector2d(refined[k].x, refined[k].y);
+          }
+        }
+        distance = CodeDistance(grey, at_junctions.corners, *stock, id);
+        if (distance <= 2) {
+          tag = at_junctions;
+          break;
+        }
+      }
+      if (distance > 2) distance = CodeDistance(grey, tag.corners, *stock, id);
       if (distance > 2) continue;
       tag.hamming = distance;
       found->emplace(id, tag);

@@ -17,8 +17,9 @@ namespace fs = std::filesystem;
 // The 6x6 grids of the EuRoC and TUM-VI calibration frames (Kalibr's
 // april_6x6: 8.8 cm tags, gap 0.3); aprilgrid-rs expects 36 tags in each.
 // On the oblique TUM-VI views grid completion finds what libapriltag
-// misses: r45 reaches 36; top_right, top and right (tags ~2 px a cell)
-// stay short of it, and the test holds them at what they reach.
+// misses: r45, top_right and right reach 36; top stays one short (its
+// corner tag at the image's edge, where the fish-eye bends the grid most),
+// and the test holds it at what it reaches.
 TEST(DetectAprilGrid, FindsTheTagsOfRealKalibrGrids) {
   const fs::path dir = fs::path(UW_REALDATA_DIR) / "aprilgrid_samples" /
                        "powei-lin_aprilgrid-rs_tests";
@@ -31,8 +32,8 @@ TEST(DetectAprilGrid, FindsTheTagsOfRealKalibrGrids) {
   };
   for (const Case& c : {Case{"EuRoC.png", 36}, Case{"TUM_VI.png", 36},
                         Case{"1520525725372653511.png", 36},
-                        Case{"r45.png", 36}, Case{"top_right.png", 35},
-                        Case{"top.png", 30}, Case{"right.png", 20}}) {
+                        Case{"r45.png", 36}, Case{"top_right.png", 36},
+                        Case{"top.png", 35}, Case{"right.png", 36}}) {
     const cv::Mat image =
         cv::imread((dir / c.image).string(), cv::IMREAD_GRAYSCALE);
     ASSERT_FALSE(image.empty()) << c.image;
