@@ -32,6 +32,111 @@ void LaserLineFitOptions::Check() const {
   }
 }
 
+RobustLine FitRobustLine(const std::vector<Eigen::Vector3d>& points_in_cam,
+                         const std::vector<double>& tolerance,
+                         double min_pair_depth_gap, int ransac_iterations,
+                         uint64_t seed) {
+  const int n = static_cast<int>(points_in_cam.size());
+  if (n < 3 || tolerance.size() != points_in_cam.size()) {
+    throw ErrorAt("line fit: ", n, " points (and ", tolerance.size(),
+                  " tolerances); needs at least 3");
+  }
+  RobustLine fit;
+  // RANSAC on pairs far enough apart in depth to define a direction.
+  SplitMix64Stream random(seed);
+  fit.inliers.assign(n, false);
+  int best_count = 0;
+  for (int iteration = 0; iteration < ransac_iterations; ++iteration) {
+    const int i = static_cast<int>(random.Next() % n);
+    const int j = static_cast<int>(random.Next() % n);
+    const Eigen::Vector3d& a = points_in_cam[i];
+    const Eigen::Vector3d& b = points_in_cam[j];
+    if (std::abs(a.z() - b.z()) < min_pair_depth_gap) continue;
+    const Eigen::Vector3d d = (b - a).normalized();
+    std::vector<bool> inliers(n);
+    int count = 0;
+    for (int k = 0; k < n; ++k) {
+      inliers[k] = DistanceFromLine(points_in_cam[k], a, d) <= tolerance[k];
+      count += inliers[k];
+    }
+    if (count > best_count) {
+      best_count = count;
+      fit.inliers = inliers;
+    }
+  }
+  if (best_count < 3) {
+    fit.num_inliers = best_count;
+    return fit;
+  }
+  std::vector<Eigen::Vector3d> inlier_points;
+  for (int k = 0; k < n; ++k) {
+    if (fit.inliers[k]) inlier_points.push_back(points_in_cam[k]);
+  }
+  RobustLine line = FitLineByDepth(inlier_points);
+  line.inliers = fit.inliers;
+  return line;
+}
+
+RobustLine FitLineByDepth(const std::vector<Eigen::Vector3d>& points_in_cam) {
+  const int n = static_cast<int>(points_in_cam.size());
+  if (n < 3) throw ErrorAt("line fit: ", n, " points; needs at least 3");
+  RobustLine fit;
+  fit.inliers.assign(n, true);
+  fit.num_inliers = n;
+  // x = Ox + a z and y = Oy + b z by weighted least squares on the inliers.
+  // A point's error grows with its depth (the spot's angular noise; a
+  // board's pose, a model's surface), so each is weighted by 1/z^2.
+  Eigen::MatrixXd design(n, 2);
+  Eigen::VectorXd xs(n);
+  Eigen::VectorXd ys(n);
+  Eigen::VectorXd weights(n);
+  for (int k = 0, row = 0; k < n; ++k) {
+    const Eigen::Vector3d& point = points_in_cam[k];
+    design.row(row) << 1.0, point.z();
+    xs(row) = point.x();
+    ys(row) = point.y();
+    weights(row) = 1.0 / (point.z() * point.z());
+    ++row;
+  }
+  const Eigen::MatrixXd weighted_design_t =
+      design.transpose() * weights.asDiagonal();
+  const Eigen::Matrix2d normal_inverse = (weighted_design_t * design).inverse();
+  const Eigen::Vector2d x_fit = normal_inverse * weighted_design_t * xs;
+  const Eigen::Vector2d y_fit = normal_inverse * weighted_design_t * ys;
+  const Eigen::VectorXd x_residuals = design * x_fit - xs;
+  const Eigen::VectorXd y_residuals = design * y_fit - ys;
+  const double weighted_squares =
+      x_residuals.dot(weights.asDiagonal() * x_residuals) +
+      y_residuals.dot(weights.asDiagonal() * y_residuals);
+  const int dof = 2 * n - 4;
+  const double variance = dof > 0 ? weighted_squares / dof : 0.0;
+  fit.rms_distance =
+      std::sqrt((x_residuals.squaredNorm() + y_residuals.squaredNorm()) / n);
+
+  Laser& laser = fit.laser;
+  laser.origin_in_cam = Eigen::Vector3d(x_fit(0), y_fit(0), 0.0);
+  const Eigen::Vector3d slope(x_fit(1), y_fit(1), 1.0);
+  laser.direction_in_cam = slope.normalized();
+  // Covariances of (Ox, a) and (Oy, b); x and y are fitted independently.
+  const Eigen::Matrix2d parameter_cov = variance * normal_inverse;
+  laser.origin_cov.setZero();
+  laser.origin_cov(0, 0) = parameter_cov(0, 0);
+  laser.origin_cov(1, 1) = parameter_cov(0, 0);
+  // The unit direction's covariance through d = s / |s|, s = (a, b, 1).
+  const double norm = slope.norm();
+  const Eigen::Matrix3d unit_jacobian =
+      (Eigen::Matrix3d::Identity() -
+       laser.direction_in_cam * laser.direction_in_cam.transpose()) /
+      norm;
+  Eigen::Matrix3d slope_cov = Eigen::Matrix3d::Zero();
+  slope_cov(0, 0) = parameter_cov(1, 1);
+  slope_cov(1, 1) = parameter_cov(1, 1);
+  laser.direction_cov = unit_jacobian * slope_cov * unit_jacobian.transpose();
+  laser.direction_cov =
+      0.5 * (laser.direction_cov + laser.direction_cov.transpose());
+  return fit;
+}
+
 LaserLineFit FitLaserLine(const std::string& name, const Camera& camera,
                           const std::vector<LaserBoardSpot>& spots,
                           const LaserLineFitOptions& options) {
@@ -65,29 +170,11 @@ LaserLineFit FitLaserLine(const std::string& name, const Camera& camera,
                   options.min_distances, " board distances");
   }
 
-  // RANSAC on pairs far enough apart in depth to define a direction.
-  SplitMix64Stream random(options.seed);
-  fit.inliers.assign(n, false);
-  int best_count = -1;
-  for (int iteration = 0; iteration < options.ransac_iterations; ++iteration) {
-    const int i = static_cast<int>(random.Next() % n);
-    const int j = static_cast<int>(random.Next() % n);
-    const Eigen::Vector3d& a = fit.points_in_cam[i];
-    const Eigen::Vector3d& b = fit.points_in_cam[j];
-    if (std::abs(a.z() - b.z()) < 0.5 * options.min_depth_span_m) continue;
-    const Eigen::Vector3d d = (b - a).normalized();
-    std::vector<bool> inliers(n);
-    int count = 0;
-    for (int k = 0; k < n; ++k) {
-      inliers[k] = DistanceFromLine(fit.points_in_cam[k], a, d) <=
-                   options.inlier_distance_m;
-      count += inliers[k];
-    }
-    if (count > best_count) {
-      best_count = count;
-      fit.inliers = inliers;
-    }
-  }
+  const RobustLine line = FitRobustLine(
+      fit.points_in_cam,
+      std::vector<double>(fit.points_in_cam.size(), options.inlier_distance_m),
+      0.5 * options.min_depth_span_m, options.ransac_iterations, options.seed);
+  fit.inliers = line.inliers;
   double min_z = std::numeric_limits<double>::infinity();
   double max_z = -std::numeric_limits<double>::infinity();
   for (int k = 0; k < n; ++k) {
@@ -95,67 +182,17 @@ LaserLineFit FitLaserLine(const std::string& name, const Camera& camera,
     min_z = std::min(min_z, fit.points_in_cam[k].z());
     max_z = std::max(max_z, fit.points_in_cam[k].z());
   }
-  if (best_count < options.min_distances ||
+  if (line.num_inliers < options.min_distances ||
       max_z - min_z < options.min_depth_span_m) {
     throw ErrorAt("laser ", name, ": the spots do not line up over ",
-                  options.min_depth_span_m, " m of depth (",
-                  std::max(best_count, 0), " of ", n,
+                  options.min_depth_span_m, " m of depth (", line.num_inliers,
+                  " of ", n,
                   " within the inlier distance); move the board further "
                   "between images");
   }
-
-  // x = Ox + a z and y = Oy + b z by weighted least squares on the inliers.
-  // A point's error grows with its depth (the spot's angular noise, and the
-  // board pose's), so each is weighted by 1/z^2 (sigma proportional to z).
-  Eigen::MatrixXd design(best_count, 2);
-  Eigen::VectorXd xs(best_count);
-  Eigen::VectorXd ys(best_count);
-  Eigen::VectorXd weights(best_count);
-  for (int k = 0, row = 0; k < n; ++k) {
-    if (!fit.inliers[k]) continue;
-    const Eigen::Vector3d& point = fit.points_in_cam[k];
-    design.row(row) << 1.0, point.z();
-    xs(row) = point.x();
-    ys(row) = point.y();
-    weights(row) = 1.0 / (point.z() * point.z());
-    ++row;
-  }
-  const Eigen::MatrixXd weighted_design_t =
-      design.transpose() * weights.asDiagonal();
-  const Eigen::Matrix2d normal_inverse = (weighted_design_t * design).inverse();
-  const Eigen::Vector2d x_fit = normal_inverse * weighted_design_t * xs;
-  const Eigen::Vector2d y_fit = normal_inverse * weighted_design_t * ys;
-  const Eigen::VectorXd x_residuals = design * x_fit - xs;
-  const Eigen::VectorXd y_residuals = design * y_fit - ys;
-  const double weighted_squares =
-      x_residuals.dot(weights.asDiagonal() * x_residuals) +
-      y_residuals.dot(weights.asDiagonal() * y_residuals);
-  const int dof = 2 * best_count - 4;
-  const double variance = dof > 0 ? weighted_squares / dof : 0.0;
-  fit.rms_distance_m = std::sqrt(
-      (x_residuals.squaredNorm() + y_residuals.squaredNorm()) / best_count);
-
-  Laser& laser = fit.laser;
-  laser.origin_in_cam = Eigen::Vector3d(x_fit(0), y_fit(0), 0.0);
-  const Eigen::Vector3d slope(x_fit(1), y_fit(1), 1.0);
-  laser.direction_in_cam = slope.normalized();
-  // Covariances of (Ox, a) and (Oy, b); x and y are fitted independently.
-  const Eigen::Matrix2d parameter_cov = variance * normal_inverse;
-  laser.origin_cov.setZero();
-  laser.origin_cov(0, 0) = parameter_cov(0, 0);
-  laser.origin_cov(1, 1) = parameter_cov(0, 0);
-  // The unit direction's covariance through d = s / |s|, s = (a, b, 1).
-  const double norm = slope.norm();
-  const Eigen::Matrix3d unit_jacobian =
-      (Eigen::Matrix3d::Identity() -
-       laser.direction_in_cam * laser.direction_in_cam.transpose()) /
-      norm;
-  Eigen::Matrix3d slope_cov = Eigen::Matrix3d::Zero();
-  slope_cov(0, 0) = parameter_cov(1, 1);
-  slope_cov(1, 1) = parameter_cov(1, 1);
-  laser.direction_cov = unit_jacobian * slope_cov * unit_jacobian.transpose();
-  laser.direction_cov =
-      0.5 * (laser.direction_cov + laser.direction_cov.transpose());
+  fit.laser = line.laser;
+  fit.laser.name = name;
+  fit.rms_distance_m = line.rms_distance;
   return fit;
 }
 

@@ -44,6 +44,28 @@ struct LaserLineFit {
   double rms_distance_m = 0.0;  // inliers' distance from the line
 };
 
+// The robust line fit both calibrations share, on points in a camera frame
+// (z forward, any unit). RANSAC on pairs at least min_pair_depth_gap apart
+// in depth: a point is an inlier of the line through a pair if its distance
+// from it is at most tolerance[k]. Then x = Ox + a z, y = Oy + b z by least
+// squares on the inliers weighted by 1/z^2 (a point's error grows with its
+// depth), the residual variance estimated from the data (2 n - 4 degrees of
+// freedom): `laser` gets the origin on z = 0, the unit direction (z > 0) and
+// their covariances. The direction does not change when all points are
+// scaled. Needs >= 3 points; the caller checks the inliers' depth span.
+struct RobustLine {
+  Laser laser;
+  std::vector<bool> inliers;
+  int num_inliers = 0;
+  double rms_distance = 0.0;  // inliers' distance from the line
+};
+// The least-squares part alone, on all of `points_in_cam` (>= 3, z > 0).
+RobustLine FitLineByDepth(const std::vector<Eigen::Vector3d>& points_in_cam);
+RobustLine FitRobustLine(const std::vector<Eigen::Vector3d>& points_in_cam,
+                         const std::vector<double>& tolerance,
+                         double min_pair_depth_gap, int ransac_iterations,
+                         uint64_t seed);
+
 // Fits x = Ox + a z, y = Oy + b z to the RANSAC inliers by least squares
 // weighted by 1/z^2 (a point's error grows with its depth); the covariances
 // are those of the fit, its residual variance estimated from the data
