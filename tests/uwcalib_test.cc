@@ -1,7 +1,11 @@
 // uwcalib detect + calibrate on OpenCV's real chessboard images, checked
-// with mrcal's own reader; bad input refused with nothing written.
+// with mrcal's own reader; lasers-from-mission on a synthetic mission in
+// models of two scales; bad input refused with nothing written.
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -9,7 +13,12 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "calib/corners_vnl.h"
+#include "calib/mission_scene_testing.h"
 #include "calib/mrcal_calibration.h"
+#include "colmap_plugins/scene/model_io.h"
+#include "colmap_plugins/util/file.h"
+#include "laserscale/spots_io.h"
+#include "sim/laser.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -213,6 +222,140 @@ TEST(Uwcalib, BadInputIsRefusedAndNothingIsWritten) {
   EXPECT_NE(result.output.find("2 board views"), std::string::npos)
       << result.output;
   EXPECT_FALSE(fs::exists(dir / "cal"));
+}
+
+// The files `uwcalib lasers-from-mission` reads, for a synthetic mission
+// in a model of scale k: the model (its points are the poses' inliers), its
+// mesh, poses.json, spots.json and origins.json (a-priori directions 0.4
+// deg off), and dives.csv (first half dive 1).
+void WriteMission(const testing_mission::Mission& mission,
+                  const LaserSetup& origins, double k, const fs::path& dir) {
+  const TriangleMesh floor = testing_mission::Floor(k);
+  const RayCaster caster(floor);
+  const std::vector<LocalizedImage> poses =
+      testing_mission::Localized(caster, mission, k);
+  Reconstruction model;
+  Camera camera = testing_mission::SurveyCamera();
+  camera.camera_id = 1;
+  model.AddCamera(camera);
+  for (const LocalizedImage& image : poses) {
+    for (const Correspondence2D3D& inlier : image.inliers) {
+      Point3D point;
+      point.point3D_id = model.Points3D().size() + 1;
+      point.xyz = inlier.point_in_world;
+      model.AddPoint3D(point);
+    }
+  }
+  fs::create_directories(dir / "sparse");
+  WriteModel(model, dir / "sparse", ModelFormat::kBinary);
+  WritePly(floor, dir / "mesh.ply");
+  std::ofstream(dir / "poses.json") << LaserPosesJsonText(poses);
+  std::map<std::string, ImageSpots> by_image;
+  for (const auto& laser_spots : mission.spots) {
+    for (size_t s = 0; s < laser_spots.size(); ++s) {
+      const MissionSpot& m = laser_spots[s];
+      ImageSpots& image = by_image[m.image];
+      image.name = m.image;
+      image.setup = origins.name;
+      DetectedSpot spot;
+      spot.laser = origins.lasers[&laser_spots - mission.spots.data()].name;
+      spot.detected = true;
+      spot.stable = true;
+      spot.detection_rate = 1.0;
+      spot.pixel = m.pixel;
+      spot.covariance = m.covariance_px;
+      image.spots.push_back(spot);
+    }
+  }
+  std::vector<ImageSpots> spots;
+  for (const auto& [name, image] : by_image) spots.push_back(image);
+  std::ofstream(dir / "spots.json") << SpotsJsonText(spots);
+  std::ofstream(dir / "origins.json") << LasersJsonText({origins});
+  std::ofstream dives(dir / "dives.csv");
+  dives << "image_name,dive\n";
+  for (size_t i = 0; i < mission.cam_from_world.size(); ++i) {
+    dives << "L" << i << ".png,"
+          << (2 * i < mission.cam_from_world.size() ? 1 : 2) << "\n";
+  }
+}
+
+std::string LasersFromMission(const fs::path& dir, const fs::path& poses,
+                              const fs::path& mesh) {
+  return kUwcalib.string() + " lasers-from-mission --input_path " +
+         Quoted(dir / "sparse") + " --mesh " + Quoted(mesh) + " --spots " +
+         Quoted(dir / "spots.json") + " --poses " + Quoted(poses) +
+         " --origins " + Quoted(dir / "origins.json") + " --image_dives " +
+         Quoted(dir / "dives.csv") + " --out " + Quoted(dir / "lasers.json") +
+         " --report_path " + Quoted(dir / "report.json");
+}
+
+// Acceptance (issue 6, 5): from mission data, the directions of models of
+// scale 0.237 and 1.0 agree within their sigma; poses or a mesh of another
+// model are refused, nothing written.
+TEST(Uwcalib, LasersFromMissionInModelsOfTwoScales) {
+  const LaserSetup truth = sim::TrueLaserSetup(sim::LaserOptions());
+  LaserSetup origins = truth;
+  for (Laser& laser : origins.lasers) {
+    laser.direction_in_cam =
+        (Eigen::AngleAxisd(0.4 * M_PI / 180, Eigen::Vector3d::UnitY()) *
+         laser.direction_in_cam)
+            .normalized();
+  }
+  const RayCaster metric(testing_mission::Floor(1.0));
+  const testing_mission::Mission mission =
+      testing_mission::MakeMission(metric, truth, 40, 0.3, 17);
+  const fs::path root = FreshTestDir("uw_uwcalib_test");
+  std::map<double, std::vector<LaserSetup>> results;
+  for (const double k : {1.0, 0.237}) {
+    const fs::path dir = root / ("k" + std::to_string(k));
+    WriteMission(mission, origins, k, dir);
+    const auto run = RunProcess(
+        LasersFromMission(dir, dir / "poses.json", dir / "mesh.ply"), true);
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(run.output.find("dive 2:"), std::string::npos) << run.output;
+    results[k] = ReadLasersJson(dir / "lasers.json");
+    const nlohmann::json report =
+        nlohmann::json::parse(ReadFileToString(dir / "report.json"));
+    EXPECT_EQ(report["setups"][0]["lasers"][0]["monte_carlo_iterations"], 1000);
+  }
+  for (size_t l = 0; l < truth.lasers.size(); ++l) {
+    const Laser& one = results[1.0][0].lasers[l];
+    const Laser& other = results[0.237][0].lasers[l];
+    const double sigma = std::sqrt(
+        std::min(one.direction_cov.trace(), other.direction_cov.trace()));
+    const double between =
+        std::atan2(one.direction_in_cam.cross(other.direction_in_cam).norm(),
+                   one.direction_in_cam.dot(other.direction_in_cam));
+    const double error = std::atan2(
+        one.direction_in_cam.cross(truth.lasers[l].direction_in_cam).norm(),
+        one.direction_in_cam.dot(truth.lasers[l].direction_in_cam));
+    std::printf(
+        "[ figures ] lasers-from-mission %s: scale 1 vs 0.237 %.2e "
+        "rad (sigma %.2e rad); %.4f deg from the truth\n",
+        one.name.c_str(), between, sigma, error * 180 / M_PI);
+    EXPECT_LT(between, sigma) << one.name;
+    EXPECT_LT(error, 3 * sigma) << one.name;
+    EXPECT_EQ(one.origin_in_cam, origins.lasers[l].origin_in_cam);
+  }
+
+  // Poses localized against the other model; then the other model's mesh.
+  const fs::path dir = root / ("k" + std::to_string(1.0));
+  const fs::path other = root / ("k" + std::to_string(0.237));
+  fs::remove(dir / "lasers.json");
+  auto run = RunProcess(
+      LasersFromMission(dir, other / "poses.json", dir / "mesh.ply"), true);
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("localized against another model"),
+            std::string::npos)
+      << run.output;
+  run = RunProcess(
+      LasersFromMission(dir, dir / "poses.json", other / "mesh.ply"), true);
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("it is not the surface of their model"),
+            std::string::npos)
+      << run.output;
+  EXPECT_FALSE(fs::exists(dir / "lasers.json"));
+  EXPECT_FALSE(fs::exists(dir / "report.json.tmp"));
 }
 
 }  // namespace

@@ -15,7 +15,10 @@ int main(int argc, char** argv) {
       "corners.vnl --lens_model LENSMODEL_OPENCV8 --focal 850 --imagersize "
       "1024,768 --out cal\n"
       "  uwcalib export    --cameramodel cal/camera-0.cameramodel --to "
-      "colmap --output_path sparse_camera\n",
+      "colmap --output_path sparse_camera\n"
+      "  uwcalib lasers-from-mission --input_path sparse/0 --mesh mesh.ply "
+      "--spots spots.json --poses poses.json --origins origins.json --out "
+      "lasers.json\n",
       {
           {"detect", uw::RunCalibDetect,
            "find the board's corners in calibration images (corners.vnl)"},
@@ -23,6 +26,8 @@ int main(int argc, char** argv) {
            "calibrate a camera from corners.vnl with mrcal (.cameramodel)"},
           {"export", uw::RunCalibExport,
            "a .cameramodel as a COLMAP camera or OpenCV YAML"},
+          {"lasers-from-mission", uw::RunLasersFromMission,
+           "laser directions from spots in localized mission images"},
       },
       argc, argv);
 }
