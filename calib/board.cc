@@ -1,6 +1,9 @@
 #include "calib/board.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "calib/corners_vnl.h"
@@ -45,6 +48,17 @@ int ParseCount(const std::string& text, const std::string& spec,
   return static_cast<int>(value);
 }
 
+// The shortest text that reads back as `value` (0.025, not
+// 0.025000000000000001).
+std::string ShortestText(double value) {
+  char text[32];
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::snprintf(text, sizeof(text), "%.*g", precision, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
+  return text;
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector3d> CalibrationBoard::CornersInBoard() const {
@@ -53,7 +67,7 @@ std::vector<Eigen::Vector3d> CalibrationBoard::CornersInBoard() const {
   // Kalibr: corner c of a row lies at (c / 2) tag pitches plus one tag
   // side for the tag's right (upper) corners.
   const auto position = [&](int c) {
-    if (kind == BoardKind::kChessboard) return c * spacing_m;
+    if (kind != BoardKind::kAprilGrid) return c * spacing_m;
     return (c / 2) * (1.0 + tag_gap) * spacing_m + (c % 2) * spacing_m;
   };
   for (int j = 0; j < grid_height; ++j) {
@@ -66,13 +80,16 @@ std::vector<Eigen::Vector3d> CalibrationBoard::CornersInBoard() const {
 
 std::string CalibrationBoard::ToString() const {
   std::ostringstream text;
-  text.precision(17);
   if (kind == BoardKind::kAprilGrid) {
     text << "aprilgrid:" << grid_width / 2 << "x" << grid_height / 2 << ":"
-         << spacing_m << ":" << tag_gap;
+         << ShortestText(spacing_m) << ":" << ShortestText(tag_gap);
+  } else if (kind == BoardKind::kCharuco) {
+    text << "charuco:" << grid_width + 1 << "x" << grid_height + 1 << ":"
+         << ShortestText(spacing_m) << ":" << ShortestText(marker_m) << ":"
+         << dictionary << (legacy ? ":legacy" : "");
   } else {
     text << "chessboard:" << grid_width << "x" << grid_height << ":"
-         << spacing_m;
+         << ShortestText(spacing_m);
   }
   return text.str();
 }
@@ -136,17 +153,39 @@ BoardObservation OnLattice(const BoardObservation& observation,
   return on_lattice;
 }
 
+const std::vector<std::pair<std::string, int>>& ArucoDictionaries() {
+  static const std::vector<std::pair<std::string, int>> kDictionaries = {
+      {"DICT_4X4_50", 50},           {"DICT_4X4_100", 100},
+      {"DICT_4X4_250", 250},         {"DICT_4X4_1000", 1000},
+      {"DICT_5X5_50", 50},           {"DICT_5X5_100", 100},
+      {"DICT_5X5_250", 250},         {"DICT_5X5_1000", 1000},
+      {"DICT_6X6_50", 50},           {"DICT_6X6_100", 100},
+      {"DICT_6X6_250", 250},         {"DICT_6X6_1000", 1000},
+      {"DICT_7X7_50", 50},           {"DICT_7X7_100", 100},
+      {"DICT_7X7_250", 250},         {"DICT_7X7_1000", 1000},
+      {"DICT_ARUCO_ORIGINAL", 1024}, {"DICT_APRILTAG_16h5", 30},
+      {"DICT_APRILTAG_25h9", 35},    {"DICT_APRILTAG_36h10", 2320},
+      {"DICT_APRILTAG_36h11", 587}};
+  return kDictionaries;
+}
+
 CalibrationBoard ParseBoard(const std::string& spec) {
   const std::vector<std::string> fields = SplitAt(spec, ':');
   const char* kExpected =
       ": expected chessboard:COLSxROWS:SQUARE_M (inner corners, square side "
-      "in metres; e.g. chessboard:9x6:0.025) or aprilgrid:COLSxROWS:TAG_M:GAP "
+      "in metres; e.g. chessboard:9x6:0.025), aprilgrid:COLSxROWS:TAG_M:GAP "
       "(Kalibr's tags, tag side in metres, gap / tag side; e.g. "
-      "aprilgrid:6x6:0.088:0.3)";
+      "aprilgrid:6x6:0.088:0.3) or "
+      "charuco:COLSxROWS:SQUARE_M:MARKER_M:DICT[:legacy] (squares, square "
+      "and marker sides in metres, OpenCV's dictionary; e.g. "
+      "charuco:20x20:0.004:0.0032:DICT_4X4_1000:legacy)";
   const bool chessboard = !fields.empty() && fields[0] == "chessboard";
   const bool aprilgrid = !fields.empty() && fields[0] == "aprilgrid";
-  if ((!chessboard && !aprilgrid) || (chessboard && fields.size() != 3) ||
-      (aprilgrid && fields.size() != 4)) {
+  const bool charuco = !fields.empty() && fields[0] == "charuco";
+  if ((!chessboard && !aprilgrid && !charuco) ||
+      (chessboard && fields.size() != 3) || (aprilgrid && fields.size() != 4) ||
+      (charuco && fields.size() != 5 && fields.size() != 6) ||
+      (charuco && fields.size() == 6 && fields[5] != "legacy")) {
     throw ErrorAt("--board ", spec, kExpected);
   }
   const std::vector<std::string> size = SplitAt(fields[1], 'x');
@@ -155,14 +194,21 @@ CalibrationBoard ParseBoard(const std::string& spec) {
                   fields[1], "'");
   }
   CalibrationBoard board;
-  board.kind = chessboard ? BoardKind::kChessboard : BoardKind::kAprilGrid;
+  board.kind = chessboard  ? BoardKind::kChessboard
+               : aprilgrid ? BoardKind::kAprilGrid
+                           : BoardKind::kCharuco;
   const int cols = ParseCount(size[0], spec, "COLS");
   const int rows = ParseCount(size[1], spec, "ROWS");
-  const int per_cell = chessboard ? 1 : 2;  // an AprilGrid's tags: 2x2
-  board.grid_width = per_cell * cols;
-  board.grid_height = per_cell * rows;
+  if (charuco && (cols < 3 || rows < 3)) {
+    throw ErrorAt("--board ", spec,
+                  ": a ChArUco board needs at least 3x3 squares");
+  }
+  const int per_cell = aprilgrid ? 2 : 1;  // an AprilGrid's tags: 2x2
+  const int inner = charuco ? -1 : 0;      // ChArUco: squares, not corners
+  board.grid_width = per_cell * cols + inner;
+  board.grid_height = per_cell * rows + inner;
   board.spacing_m =
-      ParseNumber(fields[2], spec, chessboard ? "SQUARE_M" : "TAG_M");
+      ParseNumber(fields[2], spec, aprilgrid ? "TAG_M" : "SQUARE_M");
   if (board.spacing_m <= 0.0) {
     throw ErrorAt("--board ", spec, ": the size in metres must be positive");
   }
@@ -172,6 +218,31 @@ CalibrationBoard ParseBoard(const std::string& spec) {
       throw ErrorAt("--board ", spec,
                     ": GAP (between tags, a fraction of the tag side) must "
                     "be in (0, 1)");
+    }
+  }
+  if (charuco) {
+    board.marker_m = ParseNumber(fields[3], spec, "MARKER_M");
+    if (board.marker_m <= 0.0 || board.marker_m >= board.spacing_m) {
+      throw ErrorAt("--board ", spec,
+                    ": MARKER_M must be positive and smaller than SQUARE_M");
+    }
+    board.dictionary = fields[4];
+    board.legacy = fields.size() == 6;
+    const auto& dictionaries = ArucoDictionaries();
+    const auto it = std::find_if(
+        dictionaries.begin(), dictionaries.end(),
+        [&](const auto& entry) { return entry.first == board.dictionary; });
+    if (it == dictionaries.end()) {
+      throw ErrorAt("--board ", spec, ": unknown dictionary '",
+                    board.dictionary,
+                    "'; OpenCV's are DICT_4X4_50 ... DICT_7X7_1000, "
+                    "DICT_ARUCO_ORIGINAL and DICT_APRILTAG_16h5/25h9/36h10/"
+                    "36h11");
+    }
+    const int num_markers = (cols * rows) / 2;
+    if (num_markers > it->second) {
+      throw ErrorAt("--board ", spec, ": ", num_markers, " markers, but ",
+                    board.dictionary, " has only ", it->second);
     }
   }
   return board;

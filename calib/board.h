@@ -8,6 +8,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -22,6 +23,14 @@ enum class BoardKind {
   // the bottom, column t % cols. Its corners are each tag's four, a
   // (2 cols) x (2 rows) grid in Kalibr's order: not evenly spaced.
   kAprilGrid,
+  // OpenCV's ChArUco board: cols x rows squares (spacing_m), an ArUco marker
+  // (marker_m, of `dictionary`) in every white square; its corners are the
+  // (cols - 1) x (rows - 1) inner chessboard corners, evenly spaced, row by
+  // row from the top left. Markers fill the white squares row by row from
+  // the top, ids counting up. OpenCV >= 4.6 puts a black square at the top
+  // left; "legacy" boards (OpenCV < 4.6, and setLegacyPattern) differ from
+  // it for an even number of rows: the square at the bottom left is black.
+  kCharuco,
 };
 
 struct CalibrationBoard {
@@ -30,17 +39,20 @@ struct CalibrationBoard {
   int grid_height = 0;     // rows of corners
   double spacing_m = 0.0;  // square side; an AprilGrid's tag side
   double tag_gap = 0.0;    // AprilGrid: gap between tags / tag side
+  double marker_m = 0.0;   // ChArUco: marker side
+  std::string dictionary;  // ChArUco: OpenCV's name, e.g. DICT_4X4_1000
+  bool legacy = false;     // ChArUco: the pre-4.6 layout
 
   // Corners evenly spaced by spacing_m (what mrcal's board model is).
-  bool IsRegularGrid() const { return kind == BoardKind::kChessboard; }
+  bool IsRegularGrid() const { return kind != BoardKind::kAprilGrid; }
 
   int NumCorners() const { return grid_width * grid_height; }
 
   // Corner positions on the board, mrcal's order.
   std::vector<Eigen::Vector3d> CornersInBoard() const;
 
-  // The spec string that ParseBoard reads back, e.g. "chessboard:9x6:0.025"
-  // or "aprilgrid:6x6:0.088:0.3".
+  // The spec string that ParseBoard reads back, e.g. "chessboard:9x6:0.025",
+  // "aprilgrid:6x6:0.088:0.3" or "charuco:20x20:0.004:0.0032:DICT_4X4_1000".
   std::string ToString() const;
 };
 
@@ -67,7 +79,16 @@ BoardObservation OnLattice(const BoardObservation& observation,
 //   chessboard:COLSxROWS:SQUARE_M   inner corners per row x rows, square side
 //   aprilgrid:COLSxROWS:TAG_M:GAP   Kalibr's tags per row x rows, tag side,
 //                                   gap between tags as a fraction of it
+//   charuco:COLSxROWS:SQUARE_M:MARKER_M:DICT[:legacy]
+//                                   squares per row x rows, square and
+//                                   marker sides, OpenCV's dictionary name
+//                                   (DICT_4X4_50 ... DICT_APRILTAG_36h11)
 // Throws uw::Error saying what was expected.
 CalibrationBoard ParseBoard(const std::string& spec);
+
+// OpenCV's predefined ArUco dictionaries by name, in the order of
+// cv::aruco::PREDEFINED_DICTIONARY_NAME (the index is its value); and how
+// many markers each holds.
+const std::vector<std::pair<std::string, int>>& ArucoDictionaries();
 
 }  // namespace uw

@@ -18,7 +18,7 @@ TEST(ParseBoard, ChessboardCornersAreMrcalsGrid) {
   EXPECT_TRUE(corners[10].isApprox(Eigen::Vector3d(0.025, 0.025, 0.0)));
   EXPECT_TRUE(corners[53].isApprox(Eigen::Vector3d(0.2, 0.125, 0.0)));
   EXPECT_EQ(ParseBoard(board.ToString()).spacing_m, board.spacing_m);
-  EXPECT_EQ(board.ToString(), "chessboard:9x6:0.025000000000000001");
+  EXPECT_EQ(board.ToString(), "chessboard:9x6:0.025");
 }
 
 TEST(ParseBoard, AprilGridCornersAreKalibrs) {
@@ -36,6 +36,29 @@ TEST(ParseBoard, AprilGridCornersAreKalibrs) {
   EXPECT_TRUE(corners[143].isApprox(
       Eigen::Vector3d(5 * 1.3 * 0.088 + 0.088, 5 * 1.3 * 0.088 + 0.088, 0)));
   EXPECT_EQ(ParseBoard(board.ToString()).tag_gap, 0.3);
+}
+
+TEST(ParseBoard, CharucoCornersAreItsInnerChessboardCorners) {
+  const CalibrationBoard board =
+      ParseBoard("charuco:20x16:0.004:0.0032:DICT_4X4_1000:legacy");
+  EXPECT_EQ(board.kind, BoardKind::kCharuco);
+  EXPECT_TRUE(board.IsRegularGrid());
+  EXPECT_EQ(board.grid_width, 19);
+  EXPECT_EQ(board.grid_height, 15);
+  EXPECT_EQ(board.dictionary, "DICT_4X4_1000");
+  EXPECT_TRUE(board.legacy);
+  EXPECT_TRUE(
+      board.CornersInBoard()[20].isApprox(Eigen::Vector3d(0.004, 0.004, 0.0)));
+  EXPECT_EQ(board.ToString(),
+            "charuco:20x16:0.004:0.0032:DICT_4X4_1000:legacy");
+  EXPECT_FALSE(ParseBoard("charuco:5x5:0.04:0.03:DICT_6X6_250").legacy);
+  // Markers larger than squares, a dictionary too small for the board, an
+  // unknown dictionary, a misspelt flag.
+  EXPECT_THROW(ParseBoard("charuco:5x5:0.04:0.05:DICT_6X6_250"), Error);
+  EXPECT_THROW(ParseBoard("charuco:20x20:0.04:0.03:DICT_4X4_50"), Error);
+  EXPECT_THROW(ParseBoard("charuco:5x5:0.04:0.03:DICT_9X9_50"), Error);
+  EXPECT_THROW(ParseBoard("charuco:5x5:0.04:0.03:DICT_6X6_250:old"), Error);
+  EXPECT_THROW(ParseBoard("charuco:5x5:0.04:0.03"), Error);
 }
 
 TEST(MrcalLattice, PutsAprilGridCornersOnAnEvenLattice) {

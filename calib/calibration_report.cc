@@ -1,11 +1,14 @@
 #include "calib/calibration_report.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "calib/projection_uncertainty_plot.h"
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
 #include "colmap_plugins/util/plot.h"
@@ -18,16 +21,16 @@ double InlierRms(const MrcalCalibration& camera, size_t view, int* inliers) {
   double sum_squares = 0.0;
   *inliers = 0;
   for (size_t k = 0; k < camera.residuals_px[view].size(); ++k) {
-    if (camera.outliers[view][k]) continue;
+    if (!camera.found[view][k] || camera.outliers[view][k]) continue;
     sum_squares += camera.residuals_px[view][k].squaredNorm();
     ++*inliers;
   }
   return std::sqrt(sum_squares / std::max(*inliers, 1));
 }
 
-PendingFile PngFile(const std::filesystem::path& path, const Plot& plot) {
+PendingFile PngFile(const std::filesystem::path& path, const cv::Mat& image) {
   std::vector<uchar> bytes;
-  if (!cv::imencode(".png", plot.Render(), bytes)) {
+  if (!cv::imencode(".png", image, bytes)) {
     throw ErrorAt(path.string(), ": cannot encode the plot");
   }
   return {path, [bytes](std::ostream& out) {
@@ -36,12 +39,64 @@ PendingFile PngFile(const std::filesystem::path& path, const Plot& plot) {
           }};
 }
 
+// Four significant digits: the JSON's grid is for reading, not for
+// recomputing.
+double Rounded(double value) {
+  if (!std::isfinite(value)) return value;
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.4g", value);
+  return std::strtod(text, nullptr);
+}
+
+nlohmann::json RoundedList(const std::vector<double>& values) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const double value : values) list.push_back(Rounded(value));
+  return list;
+}
+
+// The camera's projection uncertainty for calibration.json: the plot's
+// figures, and a grid 16 samples across, small enough to read.
+nlohmann::json UncertaintyJson(const MrcalCalibration& camera,
+                               const ProjectionUncertaintyMap& plotted,
+                               ProjectionUncertaintyOptions options) {
+  options.grid_width = 16;
+  options.grid_height =
+      std::max(2, static_cast<int>(std::lround(16.0 * camera.image_height /
+                                               camera.image_width)));
+  const ProjectionUncertaintyMap grid =
+      MapProjectionUncertainty(camera, options);
+  nlohmann::json values = nlohmann::json::array();
+  for (int i = 0; i < grid.stdev_px.rows(); ++i) {
+    std::vector<double> row(grid.stdev_px.cols());
+    for (int j = 0; j < grid.stdev_px.cols(); ++j) row[j] = grid.stdev_px(i, j);
+    values.push_back(RoundedList(row));
+  }
+  return {
+      {"what",
+       "1-sigma of the projection in its worst direction, pixels, as "
+       "mrcal-show-projection-uncertainty plots it (null: the pixel "
+       "does not unproject)"},
+      {"distance_m", options.distance > 0.0 ? nlohmann::json(options.distance)
+                                            : nlohmann::json(nullptr)},
+      {"observed_pixel_sigma_px", Rounded(plotted.observed_pixel_sigma)},
+      {"at_centre_px", Rounded(plotted.at_centre_px)},
+      {"max_px", Rounded(plotted.MaxPx())},
+      {"max_px_over", "the plot's " + std::to_string(plotted.x_px.size()) +
+                          "x" + std::to_string(plotted.y_px.size()) +
+                          " samples"},
+      {"grid_x_px", RoundedList(grid.x_px)},
+      {"grid_y_px", RoundedList(grid.y_px)},
+      {"values_px", values}};
+}
+
 }  // namespace
 
 void WriteCalibrationReport(const MrcalRigCalibration& result,
                             const std::vector<std::string>& globs,
                             const std::string& command,
+                            const ProjectionUncertaintyOptions& uncertainty,
                             const std::filesystem::path& dir) {
+  uncertainty.Check();
   std::vector<PendingFile> files;
   nlohmann::json json_cameras = nlohmann::json::array();
   Plot residuals("Reprojection residuals (projected - observed)", "dx [px]",
@@ -61,12 +116,15 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
       int inliers = 0;
       rms.push_back(InlierRms(camera, v, &inliers));
       index.push_back(static_cast<double>(v));
-      images.push_back(
-          {{"image", camera.images[v]},
-           {"rms_px", rms.back()},
-           {"outliers",
-            static_cast<int>(camera.residuals_px[v].size()) - inliers}});
+      int outliers = 0;
+      for (size_t k = 0; k < camera.outliers[v].size(); ++k) {
+        outliers += camera.found[v][k] && camera.outliers[v][k];
+      }
+      images.push_back({{"image", camera.images[v]},
+                        {"rms_px", rms.back()},
+                        {"outliers", outliers}});
       for (size_t k = 0; k < camera.residuals_px[v].size(); ++k) {
+        if (!camera.found[v][k]) continue;  // no residual
         const Eigen::Vector2d& r = camera.residuals_px[v][k];
         (camera.outliers[v][k] ? outlier_x : dx).push_back(r.x());
         (camera.outliers[v][k] ? outlier_y : dy).push_back(r.y());
@@ -75,6 +133,22 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
     const std::string label = "camera " + std::to_string(c);
     residuals.Points(dx, dy, Plot::Colour(static_cast<int>(c)), label);
     per_image.Points(index, rms, Plot::Colour(static_cast<int>(c)), label);
+    const ProjectionUncertaintyMap map =
+        MapProjectionUncertainty(camera, uncertainty);
+    const bool rig = result.cameras.size() > 1;
+    std::string title = "Projection uncertainty (1-sigma, worst direction, px)";
+    if (rig) title += " of camera " + std::to_string(c);
+    char distance[64];
+    std::snprintf(distance, sizeof(distance), ", looking out to %g m",
+                  uncertainty.distance);
+    title +=
+        uncertainty.distance > 0.0 ? distance : ", looking out to infinity";
+    files.push_back(PngFile(
+        dir /
+            (rig ? "projection_uncertainty-camera-" + std::to_string(c) + ".png"
+                 : std::string("projection_uncertainty.png")),
+        RenderProjectionUncertainty(map, camera.image_width,
+                                    camera.image_height, title)));
     const Rigid3d& cam_from_rig = result.cam_from_rig[c];
     const Eigen::Quaterniond& q = cam_from_rig.rotation;
     json_cameras.push_back(
@@ -88,7 +162,9 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
              cam_from_rig.translation.z()}}}},
          {"corners_observed", camera.num_corners_observed},
          {"outliers", camera.num_outliers},
-         {"images", images}});
+         {"images", images},
+         {"projection_uncertainty",
+          UncertaintyJson(camera, map, uncertainty)}});
     files.push_back(
         {dir / ("camera-" + std::to_string(c) + ".cameramodel"),
          [&, c](std::ostream& stream) {
@@ -123,8 +199,8 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
   files.push_back({dir / "calibration.json", [&](std::ostream& stream) {
                      stream << report.dump(1) << "\n";
                    }});
-  files.push_back(PngFile(dir / "residuals.png", residuals));
-  files.push_back(PngFile(dir / "residuals_per_image.png", per_image));
+  files.push_back(PngFile(dir / "residuals.png", residuals.Render()));
+  files.push_back(PngFile(dir / "residuals_per_image.png", per_image.Render()));
   WriteFilesAtomically(files, true);
 }
 

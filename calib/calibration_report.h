@@ -7,18 +7,22 @@
 #include <vector>
 
 #include "calib/mrcal_calibration.h"
+#include "calib/projection_uncertainty.h"
 
 namespace uw {
 
 // Writes into `dir`, all or nothing: camera-N.cameramodel per camera;
 // calibration.json (lens model, RMS, outliers, warp, per camera its
-// intrinsics, pose and per image the RMS of its inliers and its outliers);
-// residuals.png (every corner's residual, outliers apart) and
-// residuals_per_image.png (each image's inlier RMS). `globs` name the
-// cameras; `command` goes into the files' comments.
+// intrinsics, pose, per image the RMS of its inliers and its outliers, and
+// its projection uncertainty on a 16-column grid); residuals.png (every
+// corner's residual, outliers apart), residuals_per_image.png (each
+// image's inlier RMS) and projection_uncertainty.png (a rig's:
+// projection_uncertainty-camera-N.png), the heat map of `uncertainty`'s
+// map. `globs` name the cameras; `command` goes into the files' comments.
 void WriteCalibrationReport(const MrcalRigCalibration& result,
                             const std::vector<std::string>& globs,
                             const std::string& command,
+                            const ProjectionUncertaintyOptions& uncertainty,
                             const std::filesystem::path& dir);
 
 }  // namespace uw

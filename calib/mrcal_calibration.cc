@@ -8,12 +8,17 @@
 #include <set>
 #include <sstream>
 
+#include <suitesparse/cholmod.h>
 #include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
 #include <opencv2/calib3d.hpp>
 
 extern "C" {
 // mrcal's headers have no extern "C" of their own.
 #include <mrcal/mrcal.h>
+// After mrcal.h, which it needs: the Jacobian's size
+// (_mrcal_num_j_nonzero), exported for mrcal's Python wrapper only.
+#include <mrcal/mrcal-internal.h>
 }
 
 #include "colmap_plugins/util/error.h"
@@ -92,11 +97,13 @@ struct Problem {
   std::vector<bool> found;           // per pool entry: found by the detector
   mrcal_calobject_warp_t warp{};
   std::vector<int> imagersizes;
+  mrcal_problem_selections_t selections{};  // the last Solve's
+  const mrcal_problem_constants_t constants{-1.0, -1.0};
 
   mrcal_stats_t Solve(const mrcal_lensmodel_t& model, bool core,
                       bool distortions, bool regularization, bool outliers,
                       bool warp_too, const CalibrationBoard& board) {
-    mrcal_problem_selections_t selections{};
+    selections = {};
     selections.do_optimize_intrinsics_core = core;
     selections.do_optimize_intrinsics_distortions = distortions;
     selections.do_optimize_extrinsics = true;
@@ -104,7 +111,6 @@ struct Problem {
     selections.do_optimize_calobject_warp = warp_too;
     selections.do_apply_regularization = regularization;
     selections.do_apply_outlier_rejection = outliers;
-    const mrcal_problem_constants_t constants{-1.0, -1.0};
     const mrcal_stats_t stats = mrcal_optimize(
         nullptr, 0, nullptr, 0, intrinsics.data(), extrinsics_fromref.data(),
         frames_toref.data(), nullptr, warp_too ? &warp : nullptr, num_cameras,
@@ -117,6 +123,144 @@ struct Problem {
       throw Error("mrcal_optimize failed (no finite solution)");
     }
     return stats;
+  }
+
+  // The covariance of the last Solve as mrcal computes it
+  // (doc/uncertainty.org): with J the Jacobian in mrcal's packed state b*
+  // and Jo its rows of board corners (regularization is no measurement),
+  // Var(b*) = σ² inv(JᵀJ) JoᵀJo inv(JᵀJ), and b = D b*. Each camera keeps
+  // the block its projection depends on (MrcalSolveCovariance).
+  void Covariances(const mrcal_lensmodel_t& model,
+                   const CalibrationBoard& board,
+                   std::vector<MrcalCalibration>* cameras) const {
+    const int num_frames = static_cast<int>(frames_toref.size());
+    const int num_views = static_cast<int>(observations.size());
+    const int num_states =
+        mrcal_num_states(num_cameras, num_cameras - 1, num_frames, 0, 0,
+                         num_views, selections, &model);
+    const int num_measurements = mrcal_num_measurements(
+        num_views, 0, board.grid_width, board.grid_height, num_cameras,
+        num_cameras - 1, num_frames, 0, 0, selections, &model);
+    const int num_nonzero =
+        _mrcal_num_j_nonzero(num_views, 0, board.grid_width, board.grid_height,
+                             num_cameras, num_cameras - 1, num_frames, 0, 0,
+                             observations.data(), nullptr, selections, &model);
+    std::vector<int> row_starts(num_measurements + 1);
+    std::vector<int> columns(num_nonzero);
+    std::vector<double> values(num_nonzero);
+    std::vector<double> packed(num_states);
+    std::vector<double> x(num_measurements);
+    cholmod_sparse jt{};  // Jᵀ, i.e. J row by row
+    jt.nrow = num_states;
+    jt.ncol = num_measurements;
+    jt.nzmax = num_nonzero;
+    jt.p = row_starts.data();
+    jt.i = columns.data();
+    jt.x = values.data();
+    jt.itype = CHOLMOD_INT;
+    jt.xtype = CHOLMOD_REAL;
+    jt.dtype = CHOLMOD_DOUBLE;
+    jt.sorted = 1;
+    jt.packed = 1;
+    if (!mrcal_optimizer_callback(
+            packed.data(), num_states * sizeof(double), x.data(),
+            num_measurements * sizeof(double), &jt, intrinsics.data(),
+            extrinsics_fromref.data(), frames_toref.data(), nullptr,
+            selections.do_optimize_calobject_warp ? &warp : nullptr,
+            num_cameras, num_cameras - 1, num_frames, 0, 0, observations.data(),
+            nullptr, num_views, 0, pool.data(), &model, imagersizes.data(),
+            selections, &constants, board.spacing_m, board.grid_width,
+            board.grid_height, false)) {
+      throw Error("mrcal_optimizer_callback failed on the solution");
+    }
+    // Copied by columns and back: sorted indices, as Eigen wants them.
+    const Eigen::SparseMatrix<double> j_by_columns =
+        Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>>(
+            num_measurements, num_states, num_nonzero, row_starts.data(),
+            columns.data(), values.data());
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> j = j_by_columns;
+    const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> jtj(
+        Eigen::SparseMatrix<double>(j_by_columns.transpose() * j_by_columns));
+    if (jtj.info() != Eigen::Success) {
+      throw Error(
+          "calibration: JᵀJ of the solution is singular: the board views do "
+          "not determine every parameter, so there is no uncertainty");
+    }
+    const int num_board_rows = mrcal_num_measurements_boards(
+        num_views, board.grid_width, board.grid_height);
+    const Eigen::SparseMatrix<double> jo = j.topRows(num_board_rows);
+    const Eigen::SparseMatrix<double> jotjo = jo.transpose() * jo;
+    Eigen::VectorXd scale = Eigen::VectorXd::Ones(num_states);
+    mrcal_unpack_solver_state_vector(scale.data(), num_cameras, num_cameras - 1,
+                                     num_frames, 0, 0, selections, &model);
+
+    // σ as mrcal's projection_uncertainty() infers it: the standard
+    // deviation of the inlier corners' residual coordinates.
+    double sum = 0.0;
+    double sum_squares = 0.0;
+    int count = 0;
+    for (size_t k = 0; k < pool.size(); ++k) {
+      if (pool[k].z <= 0.0) continue;
+      for (int xy = 0; xy < 2; ++xy) {
+        sum += x[2 * k + xy];
+        sum_squares += x[2 * k + xy] * x[2 * k + xy];
+        ++count;
+      }
+    }
+    const double mean = sum / std::max(count, 1);
+    const double sigma = std::sqrt(
+        std::max(sum_squares / std::max(count, 1) - mean * mean, 0.0));
+
+    const int num_intrinsics = mrcal_lensmodel_num_params(&model);
+    if (mrcal_num_intrinsics_optimization_params(selections, &model) !=
+        num_intrinsics) {
+      throw Error("calibration: the final solve must move every intrinsic");
+    }
+    for (int c = 0; c < num_cameras; ++c) {
+      std::vector<int> states;
+      const auto append = [&](int first, int count) {
+        for (int i = 0; i < count; ++i) states.push_back(first + i);
+      };
+      append(mrcal_state_index_intrinsics(c, num_cameras, num_cameras - 1,
+                                          num_frames, 0, 0, num_views,
+                                          selections, &model),
+             num_intrinsics);
+      if (c > 0) {
+        append(mrcal_state_index_extrinsics(c - 1, num_cameras, num_cameras - 1,
+                                            num_frames, 0, 0, num_views,
+                                            selections, &model),
+               6);
+      }
+      append(
+          mrcal_state_index_frames(0, num_cameras, num_cameras - 1, num_frames,
+                                   0, 0, num_views, selections, &model),
+          6 * num_frames);
+      const int size = static_cast<int>(states.size());
+      Eigen::MatrixXd selector = Eigen::MatrixXd::Zero(num_states, size);
+      Eigen::VectorXd block_scale(size);
+      for (int i = 0; i < size; ++i) {
+        selector(states[i], i) = 1.0;
+        block_scale(i) = scale(states[i]);
+      }
+      const Eigen::MatrixXd rows = jtj.solve(selector);  // inv(JᵀJ) columns
+      MrcalSolveCovariance& covariance = (*cameras)[c].covariance;
+      covariance.state =
+          (rows.transpose() * (jotjo * rows))
+              .cwiseProduct(block_scale * block_scale.transpose());
+      covariance.observed_pixel_sigma = sigma;
+      covariance.has_rt_cam_from_ref = c > 0;
+      if (c > 0) {
+        const mrcal_pose_t& pose = extrinsics_fromref[c - 1];
+        covariance.rt_cam_from_ref << pose.r.x, pose.r.y, pose.r.z, pose.t.x,
+            pose.t.y, pose.t.z;
+      }
+      covariance.rt_ref_from_frame.clear();
+      for (const mrcal_pose_t& pose : frames_toref) {
+        covariance.rt_ref_from_frame.emplace_back();
+        covariance.rt_ref_from_frame.back() << pose.r.x, pose.r.y, pose.r.z,
+            pose.t.x, pose.t.y, pose.t.z;
+      }
+    }
   }
 };
 
@@ -363,6 +507,7 @@ static MrcalRigCalibration CalibrateRigOnRegularBoard(
                              problem.intrinsics.begin() + (c + 1) * num_params);
     camera.calobject_warp = {problem.warp.x2, problem.warp.y2};
   }
+  problem.Covariances(model, board, &result.cameras);
 
   // Residuals through mrcal's projection, the board warped as mrcal warps it.
   for (size_t o = 0; o < problem.observations.size(); ++o) {
@@ -373,6 +518,7 @@ static MrcalRigCalibration CalibrateRigOnRegularBoard(
         RigidFromPose(problem.frames_toref[problem.observations[o].iframe]));
     const Eigen::Matrix3d rotation = cam_from_board.RotationMatrix();
     camera.cam_from_board.push_back(cam_from_board);
+    std::vector<bool> found;
     std::vector<Eigen::Vector2d> residuals;
     std::vector<bool> outliers;
     for (int k = 0; k < num_corners; ++k) {
@@ -391,6 +537,7 @@ static MrcalRigCalibration CalibrateRigOnRegularBoard(
                     camera.intrinsics.data());
       const size_t entry = o * num_corners + k;
       const mrcal_point3_t& seen = problem.pool[entry];
+      found.push_back(problem.found[entry]);
       residuals.emplace_back(q.x - seen.x, q.y - seen.y);
       // Missing on input or thrown out by the solve: both have weight < 0;
       // only the second is an outlier.
@@ -398,6 +545,7 @@ static MrcalRigCalibration CalibrateRigOnRegularBoard(
       outliers.push_back(outlier);
       camera.num_outliers += outlier;
     }
+    camera.found.push_back(std::move(found));
     camera.residuals_px.push_back(std::move(residuals));
     camera.outliers.push_back(std::move(outliers));
   }
@@ -413,7 +561,7 @@ double InlierRmsPerCoordinate(const MrcalRigCalibration& result) {
   for (const MrcalCalibration& camera : result.cameras) {
     for (size_t v = 0; v < camera.residuals_px.size(); ++v) {
       for (size_t k = 0; k < camera.residuals_px[v].size(); ++k) {
-        if (camera.outliers[v][k]) continue;
+        if (!camera.found[v][k] || camera.outliers[v][k]) continue;
         sum_squares += camera.residuals_px[v][k].squaredNorm();
         ++count;
       }
@@ -441,12 +589,15 @@ MrcalRigCalibration CalibrateRigWithMrcal(
     result = CalibrateRigOnRegularBoard(on_lattice, lattice.regular, options);
     for (MrcalCalibration& camera : result.cameras) {
       for (size_t v = 0; v < camera.residuals_px.size(); ++v) {
+        std::vector<bool> found;
         std::vector<Eigen::Vector2d> residuals;
         std::vector<bool> outliers;
         for (const int point : lattice.point_of_corner) {
+          found.push_back(camera.found[v][point]);
           residuals.push_back(camera.residuals_px[v][point]);
           outliers.push_back(camera.outliers[v][point]);
         }
+        camera.found[v] = std::move(found);
         camera.residuals_px[v] = std::move(residuals);
         camera.outliers[v] = std::move(outliers);
       }

@@ -28,6 +28,25 @@ struct MrcalCalibrationOptions {
   void Check() const;
 };
 
+// What mrcal's projection_uncertainty() takes from a solve's
+// optimization_inputs, for one camera (calib/projection_uncertainty.h).
+struct MrcalSolveCovariance {
+  // Every board pose of the solve, the rig's frame from the board's, as
+  // mrcal's frames_rt_toref: Rodrigues rotation, then translation.
+  std::vector<Eigen::Matrix<double, 6, 1>> rt_ref_from_frame;
+  // The camera's pose, mrcal's rt_fromref; only cameras 1.. of a rig have
+  // one in the solve (camera 0 is the rig's frame).
+  bool has_rt_cam_from_ref = false;
+  Eigen::Matrix<double, 6, 1> rt_cam_from_ref =
+      Eigen::Matrix<double, 6, 1>::Zero();
+  // Covariance of (intrinsics, rt_cam_from_ref if any, rt_ref_from_frame in
+  // order) per unit variance of the corners' noise.
+  Eigen::MatrixXd state;
+  // mrcal's estimate of that noise: the standard deviation of the inlier
+  // corners' weighted residual coordinates, all cameras (pixels).
+  double observed_pixel_sigma = 0.0;
+};
+
 struct MrcalCalibration {
   std::string lens_model;
   std::vector<double> intrinsics;  // fx, fy, cx, cy, distortions (mrcal's)
@@ -37,8 +56,11 @@ struct MrcalCalibration {
   // Per board observation used (images where a board was found, file order).
   std::vector<std::string> images;
   std::vector<Rigid3d> cam_from_board;
-  // Per used observation and corner: reprojection residual (pixels,
-  // projected minus observed), and whether the solve threw the corner out.
+  // Per used observation and corner: whether the detector found it (a
+  // partial board: an AprilGrid's or ChArUco's), its reprojection residual
+  // (pixels, projected minus observed; meaningless when not found), and
+  // whether the solve threw it out.
+  std::vector<std::vector<bool>> found;
   std::vector<std::vector<Eigen::Vector2d>> residuals_px;
   std::vector<std::vector<bool>> outliers;
 
@@ -49,6 +71,7 @@ struct MrcalCalibration {
   int num_corners_observed = 0;  // found by the detector
   int num_outliers = 0;          // thrown out by the solve
   Eigen::Vector2d calobject_warp = Eigen::Vector2d::Zero();  // x2, y2 (m)
+  MrcalSolveCovariance covariance;
 };
 
 // Seeds (stereographic core from focal_px, board poses by PnP of the
@@ -56,7 +79,8 @@ struct MrcalCalibration {
 // solves in mrcal-calibrate-cameras' stages: geometry, + core, then the
 // lens model with regularization and outlier rejection, then the board's
 // warp. One camera; images without a board are skipped. Throws uw::Error
-// when fewer boards than the lens model needs were found or mrcal fails.
+// when fewer boards than the lens model needs were found, mrcal fails or
+// the solution is not determined (JᵀJ singular: no covariance).
 MrcalCalibration CalibrateWithMrcal(
     const std::vector<BoardObservation>& observations,
     const CalibrationBoard& board, const MrcalCalibrationOptions& options);

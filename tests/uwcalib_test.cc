@@ -176,6 +176,65 @@ TEST(Uwcalib, DetectsAprilGridsIntoCornersVnl) {
   EXPECT_FALSE(fs::exists(dir / "cal"));
 }
 
+// pyCamSet's three cameras x 22 views of a 20x20 ChArUco board (4 mm
+// squares): detected, and calibrated as a rig in one solve. pyCamSet's own
+// test asks a mean reprojection error under 1.8 px of its calibration; its
+// initial focal lengths (2828-2861 px) are the reference for ours.
+TEST(Uwcalib, CalibratesTheThreeCameraCharucoRig) {
+  const fs::path dir = FreshTestDir("uw_uwcalib_test");
+  const fs::path data = fs::path(UW_REALDATA_DIR) / "charuco_pycamset_3cam";
+  // One folder, names "<camera>-cal<frame>.jpg": the frame is the last
+  // number of a name, the camera its glob.
+  fs::create_directories(dir / "images");
+  for (const char* camera : {"1", "2", "3"}) {
+    for (const auto& entry : fs::directory_iterator(data / camera)) {
+      fs::create_symlink(entry.path(), dir / "images" /
+                                           (std::string(camera) + "-" +
+                                            entry.path().filename().string()));
+    }
+  }
+  const std::string board = "charuco:20x20:0.004:0.0032:DICT_4X4_1000";
+  auto result = RunProcess(kUwcalib.string() + " detect --board " + board +
+                               " --images " + Quoted(dir / "images") +
+                               " --out " + Quoted(dir / "corners.vnl"),
+                           true);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  // Three views are out of focus: no marker can be read in them.
+  EXPECT_NE(result.output.find("board found in 63 of 66 images"),
+            std::string::npos)
+      << result.output;
+  result = RunProcess(
+      kUwcalib.string() + " calibrate --board " + board + " --corners " +
+          Quoted(dir / "corners.vnl") +
+          " --cameras '1-*,2-*,3-*' --lens_model LENSMODEL_OPENCV5 --focal "
+          "2840 --imagersize 1280,1024 --out " +
+          Quoted(dir / "cal"),
+      true);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json report =
+      nlohmann::json::parse(ReadFileToString(dir / "cal" / "calibration.json"));
+  const double rms = report["rms_px"].get<double>();
+  const double reference_fx[3] = {2840.4, 2828.2, 2860.7};  // pyCamSet's
+  for (int c = 0; c < 3; ++c) {
+    const MrcalCameraModel model = ReadCameraModel(
+        (dir / "cal" / ("camera-" + std::to_string(c) + ".cameramodel"))
+            .string());
+    const double baseline = model.rt_cam_ref.tail<3>().norm();
+    std::printf(
+        "[ figures ] ChArUco rig camera %d: fx %.1f fy %.1f (pyCamSet's "
+        "initial fx %.1f), baseline to camera 0 %.4f m\n",
+        c, model.intrinsics[0], model.intrinsics[1], reference_fx[c], baseline);
+    EXPECT_NEAR(model.intrinsics[0] / reference_fx[c], 1.0, 0.015) << c;
+    if (c > 0) {
+      EXPECT_GT(baseline, 0.02) << c;
+      EXPECT_LT(baseline, 0.06) << c;
+    }
+  }
+  // Per coordinate; the mean 2D error is at most sqrt(2) times it.
+  std::printf("[ figures ] ChArUco rig: RMS %.3f px per coordinate\n", rms);
+  EXPECT_LT(std::sqrt(2.0) * rms, 1.8);
+}
+
 TEST(Uwcalib, BadInputIsRefusedAndNothingIsWritten) {
   const fs::path dir = FreshTestDir("uw_uwcalib_test");
   // Images without the board (the board asked for is not the one shown).

@@ -11,6 +11,7 @@
 #include "calib/corners_vnl.h"
 #include "calib/exe/commands.h"
 #include "calib/mrcal_calibration.h"
+#include "calib/projection_uncertainty.h"
 #include "colmap_plugins/exe/command.h"
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
@@ -72,9 +73,12 @@ int RunCalibrate(int argc, char** argv) {
       "solve mrcal-calibrate-cameras runs (stereographic seed, geometry, "
       "core, then the lens model with regularization and outlier rejection, "
       "then the board's warp). Writes camera-N.cameramodel (mrcal's format; "
-      "a rig's extrinsics are camera N from camera 0) and calibration.json "
-      "(RMS, outliers, residuals per image) into --out "
-      "(docs/uwcalib.md).\n\n"
+      "a rig's extrinsics are camera N from camera 0), calibration.json "
+      "(RMS, outliers, residuals per image, projection uncertainty), "
+      "residual plots and the projection-uncertainty map (mrcal's: the "
+      "worst-direction 1-sigma of projecting a point at "
+      "--uncertainty_distance through the solve's uncertain parameters) "
+      "into --out (docs/uwcalib.md).\n\n"
       "Example:\n"
       "  uwcalib calibrate --board chessboard:9x6:0.025 --corners "
       "corners.vnl --lens_model LENSMODEL_OPENCV8 --focal 850 --imagersize "
@@ -88,6 +92,7 @@ int RunCalibrate(int argc, char** argv) {
   std::string out;
   std::string imagersize;
   MrcalCalibrationOptions options;
+  ProjectionUncertaintyOptions uncertainty;
   std::vector<std::string> camera_globs = {"*"};
   bool skip_regularization = false;
   bool skip_outlier_rejection = false;
@@ -118,6 +123,11 @@ int RunCalibrate(int argc, char** argv) {
                "As mrcal-calibrate-cameras --skip-outlier-rejection");
   app.add_flag("--skip_calobject_warp_solve", skip_calobject_warp,
                "As mrcal-calibrate-cameras --skip-calobject-warp-solve");
+  app.add_option("--uncertainty_distance", uncertainty.distance,
+                 "Distance of the points whose projection uncertainty is "
+                 "mapped, in the board's units (metres); 0 is infinity, as "
+                 "mrcal-show-projection-uncertainty's default")
+      ->capture_default_str();
   return RunCommand(app, argc, argv, [&] {
     const CalibrationBoard board = ParseBoard(board_spec);
     const size_t comma = imagersize.find(',');
@@ -136,6 +146,7 @@ int RunCalibrate(int argc, char** argv) {
     options.outlier_rejection = !skip_outlier_rejection;
     options.calobject_warp = !skip_calobject_warp;
     options.Check();
+    uncertainty.Check();
     const CornersVnl corners = ReadCornersVnl(corners_path, board.NumCorners());
     const std::vector<RigCameraViews> cameras =
         SplitByCamera(corners.observations, camera_globs, corners_path);
@@ -146,7 +157,8 @@ int RunCalibrate(int argc, char** argv) {
     command << "uwcalib calibrate --board " << board.ToString()
             << " --lens_model " << options.lens_model;
     const std::filesystem::path dir(out);
-    WriteCalibrationReport(result, camera_globs, command.str(), dir);
+    WriteCalibrationReport(result, camera_globs, command.str(), uncertainty,
+                           dir);
     for (size_t c = 0; c < result.cameras.size(); ++c) {
       std::printf(
           "[calibrate] camera %zu: %zu views, %d outliers of %d "
@@ -158,6 +170,24 @@ int RunCalibrate(int argc, char** argv) {
                     std::to_string(result.cam_from_rig[c].translation.norm()) +
                     " m")
                        .c_str());
+    }
+    for (size_t c = 0; c < result.cameras.size(); ++c) {
+      const MrcalCalibration& camera = result.cameras[c];
+      const double centre = ProjectionUncertaintyAtPixel(
+          camera,
+          {(camera.image_width - 1) / 2.0, (camera.image_height - 1) / 2.0},
+          uncertainty.distance);
+      if (uncertainty.distance > 0.0) {
+        std::printf(
+            "[calibrate] camera %zu: projection uncertainty at the centre "
+            "%.3f px (1-sigma, worst direction), %g m out\n",
+            c, centre, uncertainty.distance);
+      } else {
+        std::printf(
+            "[calibrate] camera %zu: projection uncertainty at the centre "
+            "%.3f px (1-sigma, worst direction), at infinity\n",
+            c, centre);
+      }
     }
     std::printf("[calibrate] RMS %.3f px; %s\n", result.rms_px,
                 (dir / "camera-0.cameramodel").c_str());

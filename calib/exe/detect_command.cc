@@ -8,6 +8,7 @@
 
 #include "calib/aprilgrid_detector.h"
 #include "calib/board.h"
+#include "calib/charuco_detector.h"
 #include "calib/chessboard_detector.h"
 #include "calib/corners_vnl.h"
 #include "calib/exe/commands.h"
@@ -26,10 +27,14 @@ int RunCalibDetect(int argc, char** argv) {
       "top-left pixel, level 0, and one row 'NAME - - -' for an image "
       "without the board. Chessboards are found by OpenCV's sector-based "
       "detector (whole boards only), Kalibr AprilGrids by libapriltag "
-      "(any tags; corners of missing tags are '-') (docs/uwcalib.md).\n\n"
+      "(any tags; corners of missing tags are '-'), ChArUco boards by "
+      "OpenCV's ArUco markers (the corners next to found markers) "
+      "(docs/uwcalib.md).\n\n"
       "Example:\n"
       "  uwcalib detect --board chessboard:9x6:0.025 --images calib "
-      "--out corners.vnl",
+      "--out corners.vnl\n"
+      "  uwcalib detect --board charuco:20x20:0.004:0.0032:DICT_4X4_1000 "
+      "--images cam1 --out corners.vnl",
       "uwcalib detect");
   std::string board_spec;
   std::string images_dir;
@@ -38,7 +43,8 @@ int RunCalibDetect(int argc, char** argv) {
   int num_threads = 0;
   app.add_option("--board", board_spec,
                  "chessboard:COLSxROWS:SQUARE_M (inner corners, metres) or "
-                 "aprilgrid:COLSxROWS:TAG_M:GAP (Kalibr)")
+                 "aprilgrid:COLSxROWS:TAG_M:GAP (Kalibr) or "
+                 "charuco:COLSxROWS:SQUARE_M:MARKER_M:DICT[:legacy] (squares)")
       ->required();
   app.add_option("--images", images_dir, "Folder of the calibration images")
       ->required();
@@ -70,10 +76,19 @@ int RunCalibDetect(int argc, char** argv) {
         if (image.empty()) {
           throw ErrorAt(path.string(), ": cannot read the image");
         }
-        observations[i] =
-            board.kind == BoardKind::kAprilGrid
-                ? DetectAprilGrid(image, board, names[i], AprilGridOptions())
-                : DetectChessboard(image, board, names[i]);
+        switch (board.kind) {
+          case BoardKind::kAprilGrid:
+            observations[i] =
+                DetectAprilGrid(image, board, names[i], AprilGridOptions());
+            break;
+          case BoardKind::kCharuco:
+            observations[i] =
+                DetectCharuco(image, board, names[i], CharucoOptions());
+            break;
+          case BoardKind::kChessboard:
+            observations[i] = DetectChessboard(image, board, names[i]);
+            break;
+        }
         const int finished = ++done;
         if (finished % 10 == 0 || finished == static_cast<int>(names.size())) {
           std::fprintf(stderr, "[detect] %d/%zu images\n", finished,

@@ -1,0 +1,89 @@
+#include "calib/calibration_testing.h"
+
+#include <cstdio>
+
+#include "calib/corners_vnl.h"
+#include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/file.h"
+#include "colmap_plugins/util/random.h"
+#include "tests/support/process.h"
+
+namespace uw::testing_calibration {
+
+Camera TrueCamera() {
+  Camera camera;
+  camera.model_id = CameraModelId::kOpenCV;
+  camera.width = 1024;
+  camera.height = 768;
+  camera.params = {850.0, 848.0, 515.3, 380.9, -0.11, 0.06, 0.0008, -0.0004};
+  return camera;
+}
+
+std::vector<BoardObservation> ViewsWithNoise(
+    const Camera& camera, const CalibrationBoard& board,
+    const std::vector<Rigid3d>& cam_from_board, double sigma_px,
+    uint64_t seed) {
+  SplitMix64Stream noise(seed);
+  std::vector<BoardObservation> views;
+  for (size_t v = 0; v < cam_from_board.size(); ++v) {
+    BoardObservation view;
+    view.image = "frame" + std::to_string(100 + v) + ".png";
+    for (const Eigen::Vector3d& corner : board.CornersInBoard()) {
+      const Eigen::Vector2d truth =
+          camera.ImgFromCam(cam_from_board[v] * corner) -
+          Eigen::Vector2d(0.5, 0.5);
+      view.pixels.push_back(truth + sigma_px * noise.GaussianPair());
+      view.weights.push_back(1.0);
+    }
+    views.push_back(view);
+  }
+  return views;
+}
+
+MrcalCalibrationOptions Options(const std::string& lens_model, double focal_px,
+                                int width, int height) {
+  MrcalCalibrationOptions options;
+  options.lens_model = lens_model;
+  options.focal_px = focal_px;
+  options.image_width = width;
+  options.image_height = height;
+  return options;
+}
+
+std::string RunMrcalCalibrateCameras(const std::vector<RigCameraViews>& cameras,
+                                     const CalibrationBoard& board,
+                                     const MrcalCalibrationOptions& options,
+                                     const std::vector<std::string>& globs,
+                                     const std::filesystem::path& dir) {
+  std::vector<BoardObservation> all_views;
+  for (const RigCameraViews& camera : cameras) {
+    all_views.insert(all_views.end(), camera.views.begin(), camera.views.end());
+  }
+  WriteFilesAtomically({{dir / "corners.vnl",
+                         [&](std::ostream& out) {
+                           out << FormatCornersVnl(
+                               all_views, CornerWeightColumn::kLevel, {});
+                         }}},
+                       false);
+  char flags[512];
+  std::snprintf(flags, sizeof(flags),
+                " --lensmodel %s --focal %.17g --object-spacing %.17g"
+                " --object-width-n %d --object-height-n %d --imagersize %d %d",
+                options.lens_model.c_str(), options.focal_px, board.spacing_m,
+                board.grid_width, board.grid_height, options.image_width,
+                options.image_height);
+  std::string quoted_globs;
+  for (const std::string& glob : globs) quoted_globs += " '" + glob + "'";
+  const testing::ProcessResult tool = testing::RunProcess(
+      "cd " + testing::Quoted(dir) +
+          " && /usr/bin/python3 /usr/bin/mrcal-calibrate-cameras"
+          " --corners-cache corners.vnl --outdir . " +
+          flags + quoted_globs,
+      true);
+  if (tool.exit_code != 0) {
+    throw ErrorAt("mrcal-calibrate-cameras failed: ", tool.output);
+  }
+  return tool.output;
+}
+
+}  // namespace uw::testing_calibration
