@@ -1,11 +1,15 @@
 #include "calib/calibration_testing.h"
 
+#include <cmath>
 #include <cstdio>
+
+#include <Eigen/Geometry>
 
 #include "calib/corners_vnl.h"
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/file.h"
 #include "colmap_plugins/util/random.h"
+#include "sim/board_images.h"
 #include "tests/support/process.h"
 
 namespace uw::testing_calibration {
@@ -84,6 +88,64 @@ std::string RunMrcalCalibrateCameras(const std::vector<RigCameraViews>& cameras,
     throw ErrorAt("mrcal-calibrate-cameras failed: ", tool.output);
   }
   return tool.output;
+}
+
+CalibrationBoard LaserBoard() { return ParseBoard("chessboard:9x7:0.08"); }
+
+std::vector<LaserBoardView> RenderLaserBoardViews(const Camera& camera,
+                                                  const LaserSetup& setup,
+                                                  int num_distances,
+                                                  uint64_t seed) {
+  const CalibrationBoard board = LaserBoard();
+  SplitMix64Stream random(seed);
+  sim::BoardImageOptions options;
+  options.white_level = 150.0;
+  options.noise_sigma = 2.0;
+  options.supersampling = 2;  // enough for corners and spots; 4x faster
+  std::vector<LaserBoardView> views;
+  for (int i = 0; i < num_distances; ++i) {
+    const double distance = 0.6 + 3.0 * i / (num_distances - 1);
+    const double degree = M_PI / 180.0;
+    LaserBoardView view;
+    view.cam_from_board.rotation =
+        Eigen::Quaterniond(Eigen::AngleAxisd(random.Uniform(-10, 10) * degree,
+                                             Eigen::Vector3d::UnitX()) *
+                           Eigen::AngleAxisd(random.Uniform(-10, 10) * degree,
+                                             Eigen::Vector3d::UnitY()));
+    view.cam_from_board.translation =
+        Eigen::Vector3d(0, 0, distance) -
+        view.cam_from_board.rotation * Eigen::Vector3d(0.32, 0.24, 0.0);
+    const cv::Mat grey = sim::RenderBoardImage(camera, view.cam_from_board,
+                                               board, options, seed + 100 + i)
+                             .image;
+    cv::Mat bgr(grey.size(), CV_32FC3);
+    const Eigen::Vector3d normal = view.cam_from_board.RotationMatrix().col(2);
+    for (const Laser& laser : setup.lasers) {
+      const double t =
+          normal.dot(view.cam_from_board.translation - laser.origin_in_cam) /
+          normal.dot(laser.direction_in_cam);
+      view.spots.push_back(
+          camera.ImgFromCam(laser.origin_in_cam + t * laser.direction_in_cam));
+    }
+    for (int r = 0; r < grey.rows; ++r) {
+      for (int c = 0; c < grey.cols; ++c) {
+        const float level = grey.at<uint8_t>(r, c);
+        cv::Vec3f pixel(level, level, level);  // B, G, R
+        for (const Eigen::Vector2d& spot : view.spots) {
+          const double dx = c + 0.5 - spot.x();
+          const double dy = r + 0.5 - spot.y();
+          const double d2 = dx * dx + dy * dy;
+          if (d2 > 100.0) continue;
+          const float light = static_cast<float>(100.0 * std::exp(-d2 / 8.0));
+          pixel += cv::Vec3f(0.10f * light, 0.15f * light, light);
+        }
+        bgr.at<cv::Vec3f>(r, c) = pixel;
+      }
+    }
+    bgr.convertTo(view.bgr, CV_8UC3);
+    views.push_back(view);
+  }
+  return views;
 }
 
 }  // namespace uw::testing_calibration

@@ -10,6 +10,9 @@
 #include "calib/board.h"
 #include "calib/corners_vnl.h"
 #include "calib/mrcal_calibration.h"
+#include "laserscale/laser_setup.h"
+
+#include <opencv2/core.hpp>
 
 namespace uw::testing_calibration {
 
@@ -27,6 +30,27 @@ std::vector<BoardObservation> ViewsWithNoise(
 
 MrcalCalibrationOptions Options(const std::string& lens_model, double focal_px,
                                 int width, int height);
+
+// The board of the laser tests: 9x7 inner corners, 8 cm squares.
+CalibrationBoard LaserBoard();
+
+// One image of a laser calibration session.
+struct LaserBoardView {
+  cv::Mat bgr;
+  Rigid3d cam_from_board;
+  std::vector<Eigen::Vector2d> spots;  // per laser, COLMAP's convention
+};
+
+// `num_distances` views of LaserBoard() from 0.6 to 3.6 m, tilted up to 10
+// deg, rendered through `camera` (2x2 samples a pixel, noise σ 2 levels;
+// white 150, so that a
+// spot does not saturate), each laser's spot drawn where its beam meets
+// the board: a Gaussian of σ 2 px and 100 levels in red (15 and 10 in
+// green and blue).
+std::vector<LaserBoardView> RenderLaserBoardViews(const Camera& camera,
+                                                  const LaserSetup& setup,
+                                                  int num_distances,
+                                                  uint64_t seed);
 
 // Writes the cameras' views as one `dir`/corners.vnl (a glob a camera) and
 // runs mrcal-calibrate-cameras there (with /usr/bin/python3: the tool is

@@ -1,5 +1,6 @@
 #include "calib/laser_line_fit.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Dense>
@@ -194,6 +195,41 @@ LaserLineFit FitLaserLine(const std::string& name, const Camera& camera,
   fit.laser.name = name;
   fit.rms_distance_m = line.rms_distance;
   return fit;
+}
+
+std::vector<LaserLineFit> FitLaserLines(
+    const Camera& camera, const std::vector<LaserBoardSpot>& spots,
+    int num_lasers, const LaserLineFitOptions& options) {
+  if (num_lasers < 1) throw Error("laser line fit: num_lasers must be >= 1");
+  std::vector<LaserBoardSpot> remaining = spots;
+  std::vector<LaserLineFit> fits;
+  for (int l = 0; l < num_lasers; ++l) {
+    LaserLineFit fit = FitLaserLine(
+        "laser " + std::to_string(l + 1) + " of " + std::to_string(num_lasers),
+        camera, remaining, options);
+    std::vector<LaserBoardSpot> rest;
+    std::vector<LaserBoardSpot> own;
+    for (size_t k = 0; k < remaining.size(); ++k) {
+      (fit.inliers[k] ? own : rest).push_back(remaining[k]);
+    }
+    // Refitted on its own spots alone: the inlier and point lists are then
+    // those of its spots.
+    fit = FitLaserLine(fit.laser.name, camera, own, options);
+    fits.push_back(std::move(fit));
+    remaining = std::move(rest);
+  }
+  std::sort(fits.begin(), fits.end(),
+            [](const LaserLineFit& a, const LaserLineFit& b) {
+              const auto angle = [](const LaserLineFit& f) {
+                return std::atan2(f.laser.origin_in_cam.y(),
+                                  f.laser.origin_in_cam.x());
+              };
+              return angle(a) < angle(b);
+            });
+  for (size_t l = 0; l < fits.size(); ++l) {
+    fits[l].laser.name = "L" + std::to_string(l);
+  }
+  return fits;
 }
 
 }  // namespace uw

@@ -76,4 +76,14 @@ LaserLineFit FitLaserLine(const std::string& name, const Camera& camera,
                           const std::vector<LaserBoardSpot>& spots,
                           const LaserLineFitOptions& options);
 
+// Several lasers whose spots are not told apart (each image's spots in any
+// order): the line with the most spots is a laser, its inliers leave, and
+// again, num_lasers times (sequential RANSAC). The lasers are ordered and
+// named L0, L1, ... by the angle of their origin around the optical axis,
+// from +x (image right) towards +y (down). Throws uw::Error naming the
+// laser that could not be fitted.
+std::vector<LaserLineFit> FitLaserLines(
+    const Camera& camera, const std::vector<LaserBoardSpot>& spots,
+    int num_lasers, const LaserLineFitOptions& options);
+
 }  // namespace uw

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "calib/calibration_testing.h"
 #include "calib/corners_vnl.h"
 #include "calib/mission_scene_testing.h"
 #include "calib/mrcal_calibration.h"
@@ -233,6 +234,77 @@ TEST(Uwcalib, CalibratesTheThreeCameraCharucoRig) {
   // Per coordinate; the mean 2D error is at most sqrt(2) times it.
   std::printf("[ figures ] ChArUco rig: RMS %.3f px per coordinate\n", rms);
   EXPECT_LT(std::sqrt(2.0) * rms, 1.8);
+}
+
+// Acceptance (issue 6, 5) from images: set-up C's four lasers on a board
+// at 10 distances (rendered), the camera from its .cameramodel: directions
+// within 0.05 deg, origins within 1 mm.
+TEST(Uwcalib, LasersFromBoardImages) {
+  const fs::path dir = FreshTestDir("uw_uwcalib_test");
+  const Camera camera = testing_calibration::TrueCamera();
+  const LaserSetup truth = sim::TrueLaserSetup(sim::LaserOptions());
+  const std::vector<testing_calibration::LaserBoardView> views =
+      testing_calibration::RenderLaserBoardViews(camera, truth, 10, 8);
+  fs::create_directories(dir / "boards");
+  for (size_t v = 0; v < views.size(); ++v) {
+    ASSERT_TRUE(cv::imwrite(
+        (dir / "boards" / ("board" + std::to_string(v) + ".png")).string(),
+        views[v].bgr));
+  }
+  // mrcal's LENSMODEL_OPENCV4 is COLMAP's OPENCV, its pixel centres 0.5 up.
+  std::vector<double> intrinsics = camera.params;
+  intrinsics[2] -= 0.5;
+  intrinsics[3] -= 0.5;
+  std::ofstream(dir / "camera.cameramodel")
+      << FormatCameraModel("LENSMODEL_OPENCV4", intrinsics, camera.width,
+                           camera.height, Rigid3d(), {});
+  const auto result = RunProcess(
+      kUwcalib.string() + " lasers --images " + Quoted(dir / "boards") +
+          " --board chessboard:9x7:0.08 --cameramodel " +
+          Quoted(dir / "camera.cameramodel") + " --num_lasers 4 --out " +
+          Quoted(dir / "lasers.json"),
+      true);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const std::vector<LaserSetup> setups = ReadLasersJson(dir / "lasers.json");
+  ASSERT_EQ(setups.size(), 1u);
+  ASSERT_EQ(setups[0].lasers.size(), 4u);
+  for (const Laser& fitted : setups[0].lasers) {
+    const Laser* nearest = &truth.lasers[0];
+    for (const Laser& laser : truth.lasers) {
+      if ((laser.origin_in_cam - fitted.origin_in_cam).norm() <
+          (nearest->origin_in_cam - fitted.origin_in_cam).norm()) {
+        nearest = &laser;
+      }
+    }
+    const double angle_deg =
+        std::atan2(
+            fitted.direction_in_cam.cross(nearest->direction_in_cam).norm(),
+            fitted.direction_in_cam.dot(nearest->direction_in_cam)) *
+        180.0 / M_PI;
+    const double origin_mm =
+        1000.0 * (fitted.origin_in_cam - nearest->origin_in_cam).norm();
+    std::printf(
+        "[ figures ] uwcalib lasers %s: direction %.4f deg, origin %.3f mm "
+        "from the truth\n",
+        fitted.name.c_str(), angle_deg, origin_mm);
+    EXPECT_LT(angle_deg, 0.05) << fitted.name;
+    EXPECT_LT(origin_mm, 1.0) << fitted.name;
+  }
+  // Too few images with the board: refused, nothing written.
+  fs::remove(dir / "lasers.json");
+  std::ofstream(dir / "two.txt") << "board0.png\nboard1.png\n";
+  const auto refused = RunProcess(
+      kUwcalib.string() + " lasers --images " + Quoted(dir / "boards") +
+          " --image_list_path " + Quoted(dir / "two.txt") +
+          " --board chessboard:9x7:0.08 --cameramodel " +
+          Quoted(dir / "camera.cameramodel") + " --num_lasers 4 --out " +
+          Quoted(dir / "lasers.json"),
+      true);
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_NE(refused.output.find("the board was found in 2 of 2 images"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(fs::exists(dir / "lasers.json"));
 }
 
 TEST(Uwcalib, BadInputIsRefusedAndNothingIsWritten) {

@@ -7,6 +7,7 @@ namespace uw {
 int RunCalibDetect(int argc, char** argv);
 int RunCalibrate(int argc, char** argv);
 int RunCalibExport(int argc, char** argv);
+int RunCalibLasers(int argc, char** argv);
 int RunLasersFromMission(int argc, char** argv);
 
 }  // namespace uw

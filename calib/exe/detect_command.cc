@@ -6,10 +6,8 @@
 #include <tbb/task_arena.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "calib/aprilgrid_detector.h"
 #include "calib/board.h"
-#include "calib/charuco_detector.h"
-#include "calib/chessboard_detector.h"
+#include "calib/board_detection.h"
 #include "calib/corners_vnl.h"
 #include "calib/exe/commands.h"
 #include "colmap_plugins/exe/command.h"
@@ -76,19 +74,7 @@ int RunCalibDetect(int argc, char** argv) {
         if (image.empty()) {
           throw ErrorAt(path.string(), ": cannot read the image");
         }
-        switch (board.kind) {
-          case BoardKind::kAprilGrid:
-            observations[i] =
-                DetectAprilGrid(image, board, names[i], AprilGridOptions());
-            break;
-          case BoardKind::kCharuco:
-            observations[i] =
-                DetectCharuco(image, board, names[i], CharucoOptions());
-            break;
-          case BoardKind::kChessboard:
-            observations[i] = DetectChessboard(image, board, names[i]);
-            break;
-        }
+        observations[i] = DetectBoardCorners(image, board, names[i]);
         const int finished = ++done;
         if (finished % 10 == 0 || finished == static_cast<int>(names.size())) {
           std::fprintf(stderr, "[detect] %d/%zu images\n", finished,

@@ -16,6 +16,9 @@ int main(int argc, char** argv) {
       "1024,768 --out cal\n"
       "  uwcalib export    --cameramodel cal/camera-0.cameramodel --to "
       "colmap --output_path sparse_camera\n"
+      "  uwcalib lasers    --images laser_boards --board chessboard:9x7:0.08 "
+      "--cameramodel cal/camera-0.cameramodel --num_lasers 4 --out "
+      "lasers.json\n"
       "  uwcalib lasers-from-mission --input_path sparse/0 --mesh mesh.ply "
       "--spots spots.json --poses poses.json --origins origins.json --out "
       "lasers.json\n",
@@ -26,6 +29,8 @@ int main(int argc, char** argv) {
            "calibrate a camera from corners.vnl with mrcal (.cameramodel)"},
           {"export", uw::RunCalibExport,
            "a .cameramodel as a COLMAP camera or OpenCV YAML"},
+          {"lasers", uw::RunCalibLasers,
+           "laser lines from board images at many distances (lasers.json)"},
           {"lasers-from-mission", uw::RunLasersFromMission,
            "laser directions from spots in localized mission images"},
       },
