@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "calib/corners_vnl.h"
 #include "colmap_plugins/util/error.h"
 #include "sim/board_images.h"
+#include "tests/support/process.h"
 
 namespace uw {
 namespace {
@@ -55,6 +57,60 @@ TEST(DetectChessboard, FindsRenderedCornersToATenthOfAPixel) {
       count, rms, worst);
   EXPECT_LT(rms, 0.1);
   EXPECT_LT(worst, 0.3);
+}
+
+// mrgingham, mrcal's own chessboard finder (Debian's), on the same
+// renders of a square board (the only kind it finds): both against the
+// truth, and corner by corner against each other (the same numbering).
+TEST(DetectChessboard, ComparedWithMrgingham) {
+  const fs::path dir = testing::FreshTestDir("uw_chessboard_detector_test");
+  const CalibrationBoard board = ParseBoard("chessboard:10x10:0.025");
+  const Camera camera = DistortedCamera();
+  const std::vector<Rigid3d> poses =
+      sim::RandomBoardPoses(camera, board, 8, 0.4, 0.8, 40.0, 17);
+  sim::BoardImageOptions options;
+  options.noise_sigma = 2.0;
+  std::vector<sim::BoardImage> shots;
+  std::vector<BoardObservation> ours;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    shots.push_back(
+        sim::RenderBoardImage(camera, poses[i], board, options, 300 + i));
+    const std::string name = "board" + std::to_string(i) + ".png";
+    ASSERT_TRUE(cv::imwrite((dir / name).string(), shots.back().image));
+    ours.push_back(DetectChessboard(shots.back().image, board, name));
+  }
+  const testing::ProcessResult run = testing::RunProcess(
+      "cd " + testing::Quoted(dir) + " && mrgingham --gridn 10 '*.png'", false);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const CornersVnl theirs = ParseCornersVnl(run.output, "mrgingham", 100);
+  double ours_squares = 0.0;
+  double theirs_squares = 0.0;
+  double between_worst = 0.0;
+  int count = 0;
+  for (const BoardObservation& found : theirs.observations) {
+    const size_t i = std::stoul(found.image.substr(5));
+    ASSERT_LT(i, shots.size()) << found.image;
+    ASSERT_TRUE(found.Found()) << found.image;
+    ASSERT_TRUE(ours[i].Found()) << found.image;
+    for (int k = 0; k < board.NumCorners(); ++k) {
+      ours_squares += (ours[i].pixels[k] - shots[i].corners[k]).squaredNorm();
+      theirs_squares += (found.pixels[k] - shots[i].corners[k]).squaredNorm();
+      between_worst =
+          std::max(between_worst, (ours[i].pixels[k] - found.pixels[k]).norm());
+      ++count;
+    }
+  }
+  const double ours_rms = std::sqrt(ours_squares / count);
+  const double theirs_rms = std::sqrt(theirs_squares / count);
+  std::printf(
+      "[ figures ] 10x10 board, %zu of %zu views found by mrgingham: RMS "
+      "vs truth ours %.4f px, mrgingham %.4f px; corner by corner at most "
+      "%.3f px apart\n",
+      theirs.observations.size(), shots.size(), ours_rms, theirs_rms,
+      between_worst);
+  EXPECT_GE(theirs.observations.size(), 6u);
+  EXPECT_LT(ours_rms, theirs_rms);
+  EXPECT_LT(between_worst, 1.0);  // the same corners, numbered alike
 }
 
 // OpenCV's stereo sample (13 pairs of a 9x6 board, held upright in some):

@@ -22,8 +22,9 @@ packages=(
   libeigen3-dev libceres-dev libsqlite3-dev sqlite3 libcli11-dev
   libopencv-dev libgtest-dev libembree-dev libtbb-dev nlohmann-json3-dev
   # mrcal 2.2: the C library uwcalib calibrates with, and its tools
-  # (mrcal-calibrate-cameras, run by /usr/bin/python3) that tests compare with
-  libmrcal-dev mrcal python3-mrcal
+  # (mrcal-calibrate-cameras, run by /usr/bin/python3) and chessboard finder
+  # (mrgingham) that tests compare with
+  libmrcal-dev mrcal python3-mrcal mrgingham
   # AprilTag 3: tags and Kalibr AprilGrids for uwcalib
   libapriltag-dev
 )
