@@ -126,6 +126,31 @@ TEST(CalibrateLaserFromMission, MonteCarloSigmaMatchesTheSpread) {
   EXPECT_LT(sum / count, 1.3);
 }
 
+// Spots over a narrow range of distances give a direction with a lever arm
+// too short: its Monte Carlo sigma says so (ch4 spec §14.4).
+TEST(CalibrateLaserFromMission, NarrowDistancesInflateTheSigma) {
+  const LaserSetup truth = sim::TrueLaserSetup(sim::LaserOptions());
+  const RayCaster floor(Floor(1.0));
+  const Mission wide = MakeMission(floor, truth, 40, 0.3, 9, 4.5);
+  const Mission narrow = MakeMission(floor, truth, 40, 0.3, 9, 2.5);
+  MissionCalibrationOptions options;
+  options.num_iterations = 500;
+  for (size_t l = 0; l < truth.lasers.size(); ++l) {
+    const double wide_sigma = CalibrateLaserFromMission(truth.lasers[l], floor,
+                                                        wide.spots[l], options)
+                                  .sigma_deg;
+    const double narrow_sigma =
+        CalibrateLaserFromMission(truth.lasers[l], floor, narrow.spots[l],
+                                  options)
+            .sigma_deg;
+    std::printf(
+        "[ figures ] laser %s: sigma %.4f deg from 1.5-4.5 m, %.4f deg from "
+        "1.5-2.5 m\n",
+        truth.lasers[l].name.c_str(), wide_sigma, narrow_sigma);
+    EXPECT_GT(narrow_sigma, 1.5 * wide_sigma) << truth.lasers[l].name;
+  }
+}
+
 // Same seed, same answer, whatever the threads; a bad spot is set aside.
 TEST(CalibrateLaserFromMission, DeterministicAndRobust) {
   const LaserSetup truth = sim::TrueLaserSetup(sim::LaserOptions());

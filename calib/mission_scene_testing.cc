@@ -45,7 +45,8 @@ TriangleMesh Floor(double scale) {
 }
 
 Mission MakeMission(const RayCaster& floor, const LaserSetup& truth,
-                    int num_images, double sigma_px, uint64_t seed) {
+                    int num_images, double sigma_px, uint64_t seed,
+                    double max_altitude_m) {
   const Camera camera = SurveyCamera();
   SplitMix64Stream random(seed);
   Mission mission;
@@ -60,8 +61,9 @@ Mission MakeMission(const RayCaster& floor, const LaserSetup& truth,
                            Eigen::Vector3d::UnitY()))
             .toRotationMatrix();
     const Eigen::Matrix3d world_from_cam = (tilt * down).transpose();
-    const Eigen::Vector3d centre(random.Uniform(1, 9), random.Uniform(1, 9),
-                                 1.5 + 3.0 * i / (num_images - 1));
+    const Eigen::Vector3d centre(
+        random.Uniform(1, 9), random.Uniform(1, 9),
+        1.5 + (max_altitude_m - 1.5) * i / (num_images - 1));
     Rigid3d cam_from_world;
     cam_from_world.rotation = Eigen::Quaterniond(world_from_cam.transpose());
     cam_from_world.translation = -(world_from_cam.transpose() * centre);

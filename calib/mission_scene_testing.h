@@ -25,12 +25,13 @@ struct Mission {
   std::vector<std::vector<MissionSpot>> spots;  // per laser, model scale 1
 };
 
-// `num_images` downward views from 1.5 to 4.5 m above the floor, tilted up
-// to 8 deg; each laser's spot where its true beam meets the floor, with
-// sigma_px noise (and that covariance). The first half is dive 1, the rest
-// dive 2. Image i is named "L<i>.png".
+// `num_images` downward views from 1.5 m to max_altitude_m above the floor,
+// tilted up to 8 deg; each laser's spot where its true beam meets the
+// floor, with sigma_px noise (and that covariance). The first half is dive
+// 1, the rest dive 2. Image i is named "L<i>.png".
 Mission MakeMission(const RayCaster& floor, const LaserSetup& truth,
-                    int num_images, double sigma_px, uint64_t seed);
+                    int num_images, double sigma_px, uint64_t seed,
+                    double max_altitude_m = 4.5);
 
 // The mission's images localized in a model of scale k (the floor `floor`
 // is that model's): inliers are floor points on a 150 px grid of pixels.
