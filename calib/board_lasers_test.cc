@@ -11,6 +11,7 @@
 #include "calib/chessboard_detector.h"
 #include "calib/colour_spots.h"
 #include "calib/laser_line_fit.h"
+#include "calib/mission_scene_testing.h"
 #include "colmap_plugins/util/error.h"
 #include "sim/laser.h"
 
@@ -21,10 +22,7 @@ using testing_calibration::LaserBoard;
 using testing_calibration::LaserBoardView;
 using testing_calibration::RenderLaserBoardViews;
 using testing_calibration::TrueCamera;
-
-double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
-}
+using testing_mission::AngleDeg;
 
 // Acceptance (issue 6, 5) through the images: set-up C's four lasers on a
 // board at 12 distances; poses from detected corners, spots found by their

@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
-#include <opencv2/calib3d.hpp>
 
 #include "calib/board.h"
-#include "colmap_plugins/cameras/camera_models.h"
+#include "calib/board_pose.h"
+#include "calib/mission_scene_testing.h"
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/random.h"
 #include "sim/laser.h"
@@ -16,45 +16,26 @@
 namespace uw {
 namespace {
 
+using testing_mission::AngleDeg;
+using testing_mission::SurveyCamera;
+
 constexpr double kDegree = M_PI / 180.0;
 
-Camera SurveyCamera() {
-  Camera camera;
-  camera.model_id = CameraModelId::kSimpleRadial;
-  camera.width = 1024;
-  camera.height = 768;
-  camera.params = {850.0, 512.0, 384.0, -0.04};
-  return camera;
-}
-
-// The board's pose from its corners with 0.3 px noise (PnP on their
-// undistorted rays), as a calibration session would have it.
+// The board's pose from its corners with 0.3 px noise, as a calibration
+// session would have it.
 Rigid3d BoardPoseFromNoisyCorners(const Camera& camera,
                                   const CalibrationBoard& board,
                                   const Rigid3d& cam_from_board,
                                   double sigma_px, SplitMix64Stream* noise) {
-  std::vector<cv::Point3d> object_points;
-  std::vector<cv::Point2d> normalised;
+  BoardObservation corners;
   for (const Eigen::Vector3d& corner : board.CornersInBoard()) {
-    const Eigen::Vector2d pixel = camera.ImgFromCam(cam_from_board * corner) +
-                                  sigma_px * noise->GaussianPair();
-    const Eigen::Vector3d ray =
-        CameraModelCamFromImg(camera.model_id, camera.params.data(), pixel);
-    object_points.emplace_back(corner.x(), corner.y(), corner.z());
-    normalised.emplace_back(ray.x() / ray.z(), ray.y() / ray.z());
+    // mrcal's pixel convention, as the detectors give corners.
+    corners.pixels.push_back(camera.ImgFromCam(cam_from_board * corner) -
+                             Eigen::Vector2d(0.5, 0.5) +
+                             sigma_px * noise->GaussianPair());
+    corners.weights.push_back(1.0);
   }
-  cv::Mat rvec;
-  cv::Mat tvec;
-  cv::solvePnP(object_points, normalised, cv::Mat::eye(3, 3, CV_64F), cv::Mat(),
-               rvec, tvec);
-  const Eigen::Vector3d r(rvec.at<double>(0), rvec.at<double>(1),
-                          rvec.at<double>(2));
-  Rigid3d estimate;
-  estimate.rotation =
-      Eigen::Quaterniond(Eigen::AngleAxisd(r.norm(), r.normalized()));
-  estimate.translation = Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1),
-                                         tvec.at<double>(2));
-  return estimate;
+  return *EstimateBoardPose(camera, board, corners);
 }
 
 struct Session {
@@ -97,10 +78,6 @@ Session BoardSession(const Camera& camera, const LaserSetup& setup,
     }
   }
   return session;
-}
-
-double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) / kDegree;
 }
 
 // Acceptance: 0.3 px spot noise (and 0.3 px corner noise), >= 8 distances:

@@ -14,6 +14,7 @@
 namespace uw {
 namespace {
 
+using testing_mission::AngleDeg;
 using testing_mission::Floor;
 using testing_mission::Localized;
 using testing_mission::MakeMission;
@@ -25,10 +26,6 @@ constexpr double kDegree = M_PI / 180.0;
 std::vector<MissionSpot> Scaled(std::vector<MissionSpot> spots, double k) {
   for (MissionSpot& spot : spots) spot.cam_from_world.translation *= k;
   return spots;
-}
-
-double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) / kDegree;
 }
 
 // The origins are known; the directions start 0.4 deg off (a re-mounting).

@@ -22,6 +22,10 @@ Camera SurveyCamera() {
   return camera;
 }
 
+double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b)) / kDegree;
+}
+
 TriangleMesh Floor(double scale) {
   TriangleMesh mesh;
   const int n = 57;  // 14 m in 0.25 m steps

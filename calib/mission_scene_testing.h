@@ -16,6 +16,9 @@ namespace uw::testing_mission {
 // SIMPLE_RADIAL 1024 x 768, f 850 px, k -0.04: the survey camera.
 Camera SurveyCamera();
 
+// The angle between two directions, degrees (atan2: exact near 0).
+double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
 // A rough sea floor (metres, z up; times `scale`): 0.3 m swells and 0.1 m
 // ripples over 14 x 14 m, faces counter-clockwise seen from the water.
 TriangleMesh Floor(double scale);

@@ -276,11 +276,8 @@ TEST(Uwcalib, LasersFromBoardImages) {
         nearest = &laser;
       }
     }
-    const double angle_deg =
-        std::atan2(
-            fitted.direction_in_cam.cross(nearest->direction_in_cam).norm(),
-            fitted.direction_in_cam.dot(nearest->direction_in_cam)) *
-        180.0 / M_PI;
+    const double angle_deg = testing_mission::AngleDeg(
+        fitted.direction_in_cam, nearest->direction_in_cam);
     const double origin_mm =
         1000.0 * (fitted.origin_in_cam - nearest->origin_in_cam).norm();
     std::printf(
@@ -454,12 +451,14 @@ TEST(Uwcalib, LasersFromMissionInModelsOfTwoScales) {
     const Laser& other = results[0.237][0].lasers[l];
     const double sigma = std::sqrt(
         std::min(one.direction_cov.trace(), other.direction_cov.trace()));
-    const double between =
-        std::atan2(one.direction_in_cam.cross(other.direction_in_cam).norm(),
-                   one.direction_in_cam.dot(other.direction_in_cam));
-    const double error = std::atan2(
-        one.direction_in_cam.cross(truth.lasers[l].direction_in_cam).norm(),
-        one.direction_in_cam.dot(truth.lasers[l].direction_in_cam));
+    // Radians, as the covariances' sigma.
+    const double between = testing_mission::AngleDeg(one.direction_in_cam,
+                                                     other.direction_in_cam) *
+                           M_PI / 180.0;
+    const double error =
+        testing_mission::AngleDeg(one.direction_in_cam,
+                                  truth.lasers[l].direction_in_cam) *
+        M_PI / 180.0;
     std::printf(
         "[ figures ] lasers-from-mission %s: scale 1 vs 0.237 %.2e "
         "rad (sigma %.2e rad); %.4f deg from the truth\n",
