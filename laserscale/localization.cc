@@ -162,14 +162,7 @@ bool RefinePoseWithModel(const double* params,
 }
 
 double MeanFocalLengthPx(const Camera& camera) {
-  return VisitCameraModel(camera.model_id, [&](auto tag) {
-    using Model = typename decltype(tag)::type;
-    double sum = 0.0;
-    for (const int index : Model::kFocalLengthIdxs) {
-      sum += camera.params[index];
-    }
-    return sum / static_cast<double>(Model::kFocalLengthIdxs.size());
-  });
+  return CameraModelFocalLengths(camera.model_id, camera.params.data()).mean();
 }
 
 // Indices whose reprojection error through cam_from_world is below

@@ -19,8 +19,12 @@
 # Columns: camera RMSE vs truth as the model stands (absolute: every result
 # is in the navigation's frame) and after a least-squares similarity to the
 # truth; scale error s - 1 with s the scale of that similarity
-# (truth_from_model: + when the model is too small); wall time of the steps
-# of that row (bundle adjustment + alignment).
+# (truth_from_model: + when the model is too small); after that similarity,
+# the RMS distance of the model's points from the true surface and the
+# sagitta of the dome fit along the track (negative: the middle stands out
+# towards the cameras; uwcolmap model_comparer); wall time of the steps of
+# that row (bundle adjustment + alignment). OUT_DIR/table.txt has the
+# table, OUT_DIR/table.csv the same figures for spreadsheets and reports.
 #
 #   compare_with_colmap.sh SIM_DIR MODEL_DIR OUT_DIR [flags]
 #
@@ -119,6 +123,7 @@ if ! awk -v e="$max_error" 'BEGIN { exit !(e > 0) }'; then
 fi
 
 rows=()
+csv_rows=()
 add_row() {  # add_row LABEL MODEL_DIR SECONDS
   local label=$1 dir=$2 seconds=$3
   run "compare_$(basename "$dir")_none" "$uwcolmap" model_comparer \
@@ -127,7 +132,7 @@ add_row() {  # add_row LABEL MODEL_DIR SECONDS
     --input_path "$dir" --truth_dir "$sim" --alignment similarity
   # "Camera centres: RMSE <m> m = <p> % of the <extent> m extent, ..." and
   # "Alignment reference_from_model (similarity, ...): scale <s>, ...".
-  local abs="" sim_rmse="" extent="" scale=""
+  local abs="" sim_rmse="" extent="" scale="" surface_rms="" sagitta=""
   read -r abs _ < <(sed -n 's/^Camera centres: RMSE \([^ ]*\) m.*/\1/p' \
     "$out/logs/compare_$(basename "$dir")_none.log") || true
   read -r sim_rmse extent < <(sed -n \
@@ -135,16 +140,26 @@ add_row() {  # add_row LABEL MODEL_DIR SECONDS
     "$out/logs/compare_$(basename "$dir")_similarity.log") || true
   read -r scale < <(sed -n 's/^Alignment reference_from_model.*: scale \([^,]*\),.*/\1/p' \
     "$out/logs/compare_$(basename "$dir")_similarity.log") || true
-  if [[ -z "$abs" || -z "$sim_rmse" || -z "$scale" ]]; then
+  # "Surface <mesh>: ... RMS <m> m, ..." and "Dome fit ...: sagitta <m> m ...".
+  read -r surface_rms < <(sed -n 's/^Surface .* RMS \([^ ]*\) m,.*/\1/p' \
+    "$out/logs/compare_$(basename "$dir")_similarity.log") || true
+  read -r sagitta < <(sed -n 's/^Dome fit.*: sagitta \([^ ]*\) m .*/\1/p' \
+    "$out/logs/compare_$(basename "$dir")_similarity.log") || true
+  if [[ -z "$abs" || -z "$sim_rmse" || -z "$scale" || -z "$surface_rms" ]]; then
     echo "compare_with_colmap: no camera RMSE or scale in the model_comparer" \
       "logs of $dir" >&2
     exit 1
   fi
   truth_extent=$extent
+  # No dome fit (too few binned points): "nan".
+  sagitta=${sagitta:-nan}
   rows+=("$(awk -v l="$label" -v a="$abs" -v s="$sim_rmse" -v e="$extent" \
-    -v k="$scale" -v t="$seconds" 'BEGIN {
-      printf "%-60s %10.4f %12.6f %10.4f %+11.4f %8.2f", l, a, s,
-        100 * s / e, 100 * (k - 1), t }')")
+    -v k="$scale" -v m="$surface_rms" -v d="$sagitta" -v t="$seconds" 'BEGIN {
+      printf "%-60s %10.4f %12.6f %10.4f %+11.4f %10.5f %+10.5f %8.2f", l, a, s,
+        100 * s / e, 100 * (k - 1), m, d, t }')")
+  csv_rows+=("\"$label\",$abs,$sim_rmse,$(awk -v s="$sim_rmse" -v e="$extent" \
+    'BEGIN { printf "%.6g", 100 * s / e }'),$(awk -v k="$scale" \
+    'BEGIN { printf "%.6g", 100 * (k - 1) }'),$surface_rms,$sagitta,$seconds")
 }
 
 echo "[compare] model $model, navigation $sim/nav.csv," \
@@ -221,7 +236,11 @@ done
   echo "Bundle adjustment alone: colmap $colmap_ba_s s, ours (no priors)" \
     "$ours_ba_s s, ratio $(awk -v a="$ours_ba_s" -v b="$colmap_ba_s" \
       'BEGIN { printf "%.2f", a / b }') (one run; bench/results/ba_speed.json has medians)."
-  printf "%-60s %10s %12s %10s %11s %8s\n" "method" "abs_rmse_m" \
-    "sim_rmse_m" "sim_%ext" "scale_err_%" "time_s"
+  printf "%-60s %10s %12s %10s %11s %10s %10s %8s\n" "method" "abs_rmse_m" \
+    "sim_rmse_m" "sim_%ext" "scale_err_%" "surf_rms_m" "sagitta_m" "time_s"
   printf '%s\n' "${rows[@]}"
 } | tee "$out/table.txt"
+{
+  echo "method,abs_rmse_m,sim_rmse_m,sim_percent_of_extent,scale_error_percent,surface_rms_m,sagitta_m,time_s"
+  printf '%s\n' "${csv_rows[@]}"
+} > "$out/table.csv"

@@ -1,104 +1,260 @@
 #!/usr/bin/env bash
-# uwmetric's main job, end to end on the built-in synthetic survey.
+# uwmetric's main job, end to end on the built-in synthetic survey, on the
+# CPU:
 #
-# Today: sets up and builds (scripts/setup.sh); generates the default uwsim
-# world and survey (a rough seafloor, a lawnmower pass, navigation with
-# USBL-like errors, ground truth); reconstructs it with stock colmap 3.8 on
-# the CPU; and shows what uwmetric reads from colmap's files (database
-# schema and contents, model_analyzer figures, a lossless BIN -> BIN round
-# trip) and how far colmap's cameras are from the truth after colmap's own
-# similarity alignment; then runs the same model through stock colmap's
-# bundle_adjuster + model_aligner and through uwmetric's navigation-fused
-# bundle adjuster and prints one comparison table against the truth; then
-# measures the navigation-fused model's scale with the laser images
-# (laserscale detect / localize / estimate) and ends with that scale, its
-# 95 % interval, the truth and the report's path.
-# Takes about 11 minutes on 2 cores.
+#   1. uwsim: the default world (a rough seafloor) and survey (a lawnmower
+#      pass with navigation, laser images and ground truth); stock colmap
+#      3.8: features, matching, mapper
+#   2. what uwmetric reads from colmap's files (database, model, a lossless
+#      BIN round trip)
+#   3. navigation: stock colmap bundle_adjuster + model_aligner against
+#      uwcolmap pose_prior_importer + bundle_adjuster --Nav.strategy prior
+#      (scripts/compare_with_colmap.sh)
+#   4. uwcolmap dense_mesher on the navigation-fused model, measured against
+#      the true surface
+#   5. laserscale detect / localize / estimate on the dense mesh, then
+#      laserscale apply (model and mesh in metres)
 #
-#   bash scripts/demo.sh [OUTPUT_DIR]      # default: out/demo
+# and ends with one summary: registered images, the scale with its 95 %
+# interval and its error against the truth, the stock-vs-ours table (camera
+# RMSE, surface RMS and doming sagitta against the truth), the dense mesh's
+# accuracy and coverage, and the time of every stage (also in
+# OUTPUT_DIR/timings.csv). About 12 minutes on 2 cores.
+#
+#   bash scripts/demo.sh [OUTPUT_DIR] [flags]     # default: out/demo
+#
+# flags (for tests and quick looks; the defaults are the full demo):
+#   --survey DIR          reuse a survey reconstructed by
+#                         scripts/reconstruct_uwsim_survey.sh (copied)
+#                         instead of stage 1
+#   --laser_database DB   reuse the laser images' database of
+#                         scripts/add_laser_images.sh (copied)
+#   --max_image_size N    dense_mesher's depth maps (default 512)
+#   --mc N                Monte Carlo samples of the scale (default 5000)
+#   --no_setup            do not run scripts/setup.sh (already built)
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-out="${1:-$root/out/demo}"
 bin="${UW_BUILD_DIR:-$root/build}/bin"
+out="$root/out/demo"
+if [[ $# -gt 0 && $1 != --* ]]; then
+  out=$1
+  shift
+fi
+survey=""
+laser_database=""
+max_image_size=512
+mc=5000
+setup=1
+while [[ $# -gt 0 ]]; do
+  case $1 in
+    --survey) survey=$2; shift 2 ;;
+    --laser_database) laser_database=$2; shift 2 ;;
+    --max_image_size) max_image_size=$2; shift 2 ;;
+    --mc) mc=$2; shift 2 ;;
+    --no_setup) setup=0; shift ;;
+    *)
+      sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//' >&2
+      echo "demo: unknown flag $1" >&2
+      exit 2
+      ;;
+  esac
+done
 
-bash "$root/scripts/setup.sh"
+if ((setup)); then
+  bash "$root/scripts/setup.sh"
+fi
 start=$SECONDS
 
+stage_names=()
+stage_seconds=()
+stage() {  # stage NAME COMMAND...: run it and record its wall time
+  local name=$1 t0=$SECONDS
+  shift
+  "$@"
+  stage_names+=("$name")
+  stage_seconds+=($((SECONDS - t0)))
+}
+fail() {
+  echo "demo: $*" >&2
+  exit 1
+}
+
 echo
-echo "== 1. Generate the default world and survey (uwsim), reconstruct it with stock colmap"
-bash "$root/scripts/reconstruct_uwsim_survey.sh" "$bin/uwsim" "$out"
+echo "== 1. The default world and survey (uwsim), reconstructed by stock colmap"
+if [[ -n "$survey" ]]; then
+  for f in sim sparse/0 database.db; do
+    [[ -e "$survey/$f" ]] || fail "--survey $survey has no $f"
+  done
+  marker=".uwmetric-uwsim-survey"
+  if [[ -e "$out" && -n "$(ls -A "$out" 2>/dev/null)" && ! -f "$out/$marker" ]]; then
+    fail "$out exists and was not made by this script; choose a new or empty folder"
+  fi
+  rm -rf "$out"
+  mkdir -p "$out/logs"
+  touch "$out/$marker"
+  copy_survey() {
+    cp -r "$survey/sim" "$survey/sparse" "$out/"
+    # Through SQLite, so that a write-ahead log is included.
+    sqlite3 "$survey/database.db" ".backup '$out/database.db'"
+  }
+  stage "copy the survey" copy_survey
+  echo "reused $survey"
+else
+  stage "uwsim generate + stock colmap (features, matching, mapper)" \
+    bash "$root/scripts/reconstruct_uwsim_survey.sh" "$bin/uwsim" "$out"
+fi
+sim="$out/sim"
+registered=$("$bin/uwcolmap" model_analyzer --path "$out/sparse/0" |
+  sed -n 's/^Registered images: //p')
+total=$(find "$sim/images" -maxdepth 1 -type f | wc -l)
+echo "registered images: $registered of $total"
 
 echo
 echo "== 2. What uwmetric reads from colmap's database and model"
-"$bin/uwcolmap" database_analyzer --database_path "$out/database.db"
-echo
+"$bin/uwcolmap" database_analyzer --database_path "$out/database.db" \
+  > "$out/logs/database_analyzer.log"
+head -n 12 "$out/logs/database_analyzer.log"
+echo "... (all of it: $out/logs/database_analyzer.log)"
 "$bin/uwcolmap" model_analyzer --path "$out/sparse/0"
-
-echo
-echo "== 3. Round trips through uwmetric's reader and writer"
 "$bin/uwcolmap" model_converter --input_path "$out/sparse/0" \
-  --output_path "$out/uw_bin" --output_type BIN
-"$bin/uwcolmap" model_converter --input_path "$out/sparse/0" \
-  --output_path "$out/uw_txt" --output_type TXT
+  --output_path "$out/uw_bin" --output_type BIN > /dev/null
 for f in cameras images points3D; do
-  if cmp -s "$out/sparse/0/$f.bin" "$out/uw_bin/$f.bin"; then
-    echo "$f.bin: byte-identical after read + write ($(stat -c %s "$out/uw_bin/$f.bin") bytes)"
-  else
-    echo "$f.bin: DIFFERS after read + write" >&2
-    exit 1
-  fi
+  cmp -s "$out/sparse/0/$f.bin" "$out/uw_bin/$f.bin" ||
+    fail "$f.bin differs after uwmetric's read + write"
 done
-echo "text model written to $out/uw_txt"
+echo "cameras.bin, images.bin, points3D.bin: byte-identical after uwmetric's read + write"
+# Stock colmap's model, aligned to the truth by a similarity: the best a
+# stock colmap user could do with perfect ground control.
+"$bin/uwcolmap" model_comparer --input_path "$out/sparse/0" --truth_dir "$sim" \
+  > "$out/logs/compare_colmap_mapper_similarity.log"
 
 echo
-echo "== 4. colmap's cameras vs uwsim's truth (colmap model_aligner, similarity)"
-mkdir -p "$out/aligned"
-if ! colmap model_aligner --input_path "$out/sparse/0" --output_path "$out/aligned" \
-  --ref_images_path "$out/sim/truth/ref_images.txt" --ref_is_gps 0 \
-  --robust_alignment_max_error 0.1 > "$out/logs/model_aligner.log" 2>&1; then
-  cat "$out/logs/model_aligner.log" >&2
-  exit 1
-fi
-registered=$("$bin/uwcolmap" model_analyzer --path "$out/sparse/0" | sed -n 's/^Registered images: //p')
-total=$(ls "$out/sim/images" | wc -l)
-echo "registered images: $registered of $total"
-grep -i "alignment error" "$out/logs/model_aligner.log" | sed 's/^=> //; s/$/ [m]/'
-
-echo
-echo "== 5. Navigation: stock colmap BA + model_aligner vs uwmetric's navigation-fused BA"
+echo "== 3. Navigation: stock colmap BA + model_aligner vs uwmetric's navigation-fused BA"
 echo "(camera on the vehicle as uwsim places it; the navigation has uwsim's USBL-like"
 echo " errors, ~1 m per image on this 6 m survey: see docs/uwcolmap.md#bundle_adjuster)"
-rm -rf "$out/compare"
-bash "$root/scripts/compare_with_colmap.sh" "$out/sim" "$out/sparse/0" \
+stage "navigation: colmap BA + model_aligner vs pose_prior_importer + bundle_adjuster" \
+  bash "$root/scripts/compare_with_colmap.sh" "$sim" "$out/sparse/0" \
   "$out/compare" --mount down --lever_arm 0.6,0,-0.3 --boresight 0.3,-0.5,0.8
-echo "navigation-fused model (lambda from the noise levels): $out/compare/ours_prior_auto (ba_report.json)"
+model="$out/compare/ours_prior_auto"
+echo "navigation-fused model (lambda from the noise levels): $model (ba_report.json)"
 
 echo
-echo "== 6. Laser scale of the navigation-fused model (laserscale)"
-model="$out/compare/ours_prior_auto"
+echo "== 4. Dense surface of the navigation-fused model (uwcolmap dense_mesher, CPU)"
+mkdir -p "$out/dense"
+stage "dense_mesher" "$bin/uwcolmap" dense_mesher --input_path "$model" \
+  --image_path "$sim/images" --output_path "$out/dense/mesh.ply" \
+  --DenseMesher.max_image_size "$max_image_size" > "$out/logs/dense_mesher.log" 2>&1 ||
+  { tail -n 20 "$out/logs/dense_mesher.log"; fail "dense_mesher failed"; }
+tr '\r' '\n' < "$out/logs/dense_mesher.log" | grep -v '/[0-9]*$' | tail -n 3
+"$bin/uwcolmap" model_comparer --input_path "$model" --truth_dir "$sim" \
+  --dense_mesh_path "$out/dense/mesh.ply" --output_path "$out/dense/compare.json" \
+  > "$out/logs/compare_dense.log"
+grep -A 3 '^Dense surface' "$out/logs/compare_dense.log"
+
+echo
+echo "== 5. Laser scale of the navigation-fused model (laserscale), on the dense mesh"
 laser="$out/laser"
-bash "$root/scripts/add_laser_images.sh" "$out" "$laser"
-"$bin/laserscale" detect --images "$out/sim/laser_images" \
-  --lasers "$out/sim/lasers.json" --input_path "$model" \
-  --out "$laser/spots.json" --overlays "$laser/overlays" | tail -n 1
-"$bin/laserscale" localize --database_path "$laser/database.db" \
-  --input_path "$model" --image_list_path "$laser/laser_list.txt" \
-  --out "$laser/poses.json" | tail -n 1
-# No dense mesh yet: a heightfield of the sparse points (docs/laserscale.md).
-"$bin/laserscale" sparse_surface --input_path "$model" \
-  --output_path "$laser/surface.ply"
-"$bin/laserscale" estimate --mesh "$laser/surface.ply" \
-  --poses "$laser/poses.json" --spots "$laser/spots.json" \
-  --lasers "$out/sim/lasers.json" --overlays "$laser/overlays" \
-  --out "$laser/report" > "$laser/estimate.log"
-summary=$(tail -n 1 "$laser/estimate.log")
+if [[ -n "$laser_database" ]]; then
+  [[ -f "$laser_database" ]] || fail "--laser_database $laser_database does not exist"
+  mkdir -p "$laser/logs"
+  find "$sim/laser_images" -maxdepth 1 -type f ! -name '*_aux.*' -printf '%f\n' |
+    sort > "$laser/laser_list.txt"
+  stage "laser images: copy the database" \
+    sqlite3 "$laser_database" ".backup '$laser/database.db'"
+else
+  stage "laser images: colmap features + matching" \
+    bash "$root/scripts/add_laser_images.sh" "$out" "$laser"
+fi
+laserscale_chain() {
+  "$bin/laserscale" detect --images "$sim/laser_images" \
+    --lasers "$sim/lasers.json" --input_path "$model" \
+    --out "$laser/spots.json" --overlays "$laser/overlays" | tail -n 1
+  "$bin/laserscale" localize --database_path "$laser/database.db" \
+    --input_path "$model" --image_list_path "$laser/laser_list.txt" \
+    --out "$laser/poses.json" | tail -n 1
+  "$bin/laserscale" estimate --mesh "$out/dense/mesh.ply" \
+    --poses "$laser/poses.json" --spots "$laser/spots.json" \
+    --lasers "$sim/lasers.json" --overlays "$laser/overlays" --mc "$mc" \
+    --out "$laser/report" > "$laser/estimate.log"
+  tail -n 1 "$laser/estimate.log"
+}
+stage "laserscale detect + localize + estimate" laserscale_chain
+stage "laserscale apply" "$bin/laserscale" apply --input_path "$model" \
+  --scale "$laser/report/scale.json" --output_path "$out/metric" \
+  --input_mesh "$out/dense/mesh.ply" --output_mesh "$out/metric/mesh.ply"
+"$bin/uwcolmap" model_comparer --input_path "$out/metric" --truth_dir "$sim" \
+  > "$out/logs/compare_metric_similarity.log"
+
+# ---------------------------------------------------------------- summary
+total_s=$((SECONDS - start))
+{
+  echo "stage,seconds"
+  for i in "${!stage_names[@]}"; do
+    echo "\"${stage_names[$i]}\",${stage_seconds[$i]}"
+  done
+  echo "\"total\",$total_s"
+} > "$out/timings.csv"
+
+# comparer_figures LOG: "camera_rmse_m surface_rms_m sagitta_m scale" of a
+# model_comparer log (similarity alignment).
+comparer_figures() {
+  awk '
+    /^Alignment reference_from_model/ { s = $0; sub(/.*: scale /, "", s); sub(/,.*/, "", s) }
+    /^Camera centres: RMSE/ { r = $4 }
+    /^Surface .*signed distance/ { m = $0; sub(/.*RMS /, "", m); sub(/ m,.*/, "", m) }
+    /^Dome fit/ { d = $0; sub(/.*sagitta /, "", d); sub(/ m .*/, "", d) }
+    END { printf "%s %s %s %s\n", r, m, d, s }' "$1"
+}
+row() {  # row LABEL LOG SCALE_MEANING
+  local rmse surf sag scale
+  read -r rmse surf sag scale < <(comparer_figures "$2")
+  [[ -n "$rmse" && -n "$scale" ]] || fail "no figures in $2"
+  awk -v l="$1" -v r="$rmse" -v m="$surf" -v d="$sag" -v s="$scale" -v k="$3" 'BEGIN {
+    e = (k == "metric") ? sprintf("%+.3f %%", 100 * (s - 1)) : "(arbitrary)"
+    printf "  %-50s %12.5f %12.5f %+12.5f %12s\n", l, r, m, d, e }'
+}
+
+read -r s low high < <(python3 -c '
+import json, sys
+j = json.load(open(sys.argv[1]))
+print(j["scale"], j["ci95"][0], j["ci95"][1])' "$laser/report/scale.json")
+# The truth: the scale of the similarity that takes the navigation-fused
+# model onto uwsim's true cameras.
 true_scale=$(sed -n 's/^Alignment reference_from_model.*: scale \([^,]*\),.*/\1/p' \
   "$out/compare/logs/compare_ours_prior_auto_similarity.log" | head -n 1)
+read -r accuracy < <(python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))["dense_surface"]
+print("median %.2f mm = %.3f %% of the %.2f m camera-scene distance, coverage %.1f %% of %.1f m^2" % (
+    1000 * d["median_distance"], 100 * d["median_over_camera_scene_distance"],
+    d["camera_scene_distance"], 100 * d["coverage"], d["observed_area"]))' \
+  "$out/dense/compare.json")
 
 echo
-echo "Demo finished in $((SECONDS - start)) s; outputs in $out"
-echo "Scale of the navigation-fused model from the laser images:"
-echo "  ${summary#\[estimate\] }"
-echo "  truth (similarity of the model to uwsim's truth): s = $true_scale"
-echo "  report: $laser/report/index.html"
+echo "================================ Summary ================================"
+echo "Outputs in $out"
+echo "Registered images: $registered of $total (stock colmap mapper)"
+awk -v s="$s" -v a="$low" -v b="$high" -v t="$true_scale" 'BEGIN {
+  e = s / t - 1
+  inside = (a <= t && t <= b) ? "inside" : "OUTSIDE"
+  printf "Laser scale of the navigation-fused model: s = %.5f, 95 %% interval [%.5f, %.5f]\n", s, a, b
+  printf "  truth %.5f: error %+.3f %% (the truth is %s the interval)\n", t, 100 * e, inside }'
+echo "Dense mesh vs the true surface: $accuracy"
+echo "Against uwsim's truth, each model aligned by a similarity (a camera-centre fit):"
+printf "  %-50s %12s %12s %12s %12s\n" "model" "camera_rmse_m" "surf_rms_m" \
+  "sagitta_m" "scale_error"
+row "stock colmap mapper" "$out/logs/compare_colmap_mapper_similarity.log" arbitrary
+row "stock colmap BA + model_aligner (camera centres)" \
+  "$out/compare/logs/compare_colmap_camera_similarity.log" metric
+row "ours: bundle_adjuster --Nav.strategy prior" \
+  "$out/compare/logs/compare_ours_prior_auto_similarity.log" metric
+row "ours + laserscale apply" "$out/logs/compare_metric_similarity.log" metric
+echo "  (scale_error: s_similarity - 1 of a model meant to be in metres;"
+echo "   sagitta < 0: a dome; the absolute errors are in $out/compare/table.txt)"
+echo "Time per stage (s):"
+for i in "${!stage_names[@]}"; do
+  printf "  %-78s %5d\n" "${stage_names[$i]}" "${stage_seconds[$i]}"
+done
+printf "  %-78s %5d\n" "total (after setup)" "$total_s"
+echo "Laser report: $laser/report/index.html"

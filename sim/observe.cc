@@ -6,10 +6,11 @@
 
 #include <tbb/parallel_for.h>
 
+#include "colmap_plugins/mesh/ray_caster.h"
+#include "colmap_plugins/mesh/visibility.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "colmap_plugins/util/error.h"
 #include "colmap_plugins/util/random.h"
-#include "colmap_plugins/mesh/ray_caster.h"
 
 namespace uw::sim {
 namespace {
@@ -32,91 +33,10 @@ Eigen::Vector3d Gaussian3(SplitMix64Stream* random) {
   return {x, y, random->Gaussian()};
 }
 
-// What ObserveModel needs of an image, precomputed.
-struct View {
-  const Image* image;
-  const Camera* camera;
-  Eigen::Matrix3d cam_from_world_rotation;
-  Eigen::Vector3d cam_from_world_translation;
-  Eigen::Vector3d centre_in_world;
-};
-
-std::vector<View> MakeViews(const Reconstruction& truth) {
-  std::vector<View> views;
-  for (const Image& image : truth.Images()) {
-    const Camera* camera = truth.FindCamera(image.camera_id);
-    if (camera == nullptr) {
-      throw ErrorAt("image ", image.name, " has unknown camera ",
-                    image.camera_id);
-    }
-    views.push_back({&image, camera, image.cam_from_world.RotationMatrix(),
-                     image.cam_from_world.translation,
-                     image.ProjectionCenter()});
-  }
-  return views;
-}
-
-// The pixel of `point_in_world` if it lies in the view of the image: in
-// front, inside the image, and where the camera model is invertible (a
-// polynomial distortion folds rays from far outside the field of view back
-// into the image; the round trip through the inverse rejects them).
-std::optional<Eigen::Vector2d> PixelInView(
-    const View& view, const Eigen::Vector3d& point_in_world) {
-  const Eigen::Vector3d point_in_cam =
-      view.cam_from_world_rotation * point_in_world +
-      view.cam_from_world_translation;
-  if (!(point_in_cam.z() > 0.0)) return std::nullopt;
-  const Camera& camera = *view.camera;
-  const Eigen::Vector2d pixel = camera.ImgFromCam(point_in_cam);
-  if (!(pixel.x() >= 0.0 && pixel.y() >= 0.0 &&
-        pixel.x() < static_cast<double>(camera.width) &&
-        pixel.y() < static_cast<double>(camera.height))) {
-    return std::nullopt;
-  }
-  const Eigen::Vector3d ray =
-      CameraModelCamFromImg(camera.model_id, camera.params.data(), pixel);
-  constexpr double kMaxRoundTripError = 1e-6;  // normalised image units
-  if (!((ray.head<2>() - point_in_cam.head<2>() / point_in_cam.z()).norm() <
-        kMaxRoundTripError)) {
-    return std::nullopt;
-  }
-  return pixel;
-}
-
-struct Observation {
-  size_t view = 0;
-  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // noise-free
-};
-
-// The images that see a point on the surface: in view and nothing in front
-// of it along the ray from the camera centre.
-std::vector<Observation> Observe(const std::vector<View>& views,
-                                 const RayCaster& caster,
-                                 const Eigen::Vector3d& point_in_world) {
-  // A ray towards a surface point stops at that point to within the
-  // single-precision resolution of the mesh, possibly on a neighbouring
-  // triangle through the same place.
-  const double tolerance = 4.0 * caster.SurfaceEpsilon();
-  std::vector<Observation> observations;
-  for (size_t k = 0; k < views.size(); ++k) {
-    const std::optional<Eigen::Vector2d> pixel =
-        PixelInView(views[k], point_in_world);
-    if (!pixel.has_value()) continue;
-    const Eigen::Vector3d offset = point_in_world - views[k].centre_in_world;
-    const double distance = offset.norm();
-    const std::optional<RayCaster::Hit> hit = caster.Intersect(
-        views[k].centre_in_world, offset / distance, distance + tolerance);
-    if (hit.has_value() && hit->distance >= distance - tolerance) {
-      observations.push_back({k, *pixel});
-    }
-  }
-  return observations;
-}
-
 // Cumulative areas of the triangles whose centroid some image has in view
 // (0 for the others): uniform sampling over the surface the survey saw.
 std::vector<double> CumulativeSeenArea(const TriangleMesh& mesh,
-                                       const std::vector<View>& views) {
+                                       const SurfaceVisibility& visibility) {
   std::vector<double> areas(mesh.triangles.size(), 0.0);
   tbb::parallel_for(size_t(0), mesh.triangles.size(), [&](size_t t) {
     const Eigen::Vector3i& triangle = mesh.triangles[t];
@@ -124,8 +44,8 @@ std::vector<double> CumulativeSeenArea(const TriangleMesh& mesh,
     const Eigen::Vector3d& b = mesh.vertices[triangle[1]];
     const Eigen::Vector3d& c = mesh.vertices[triangle[2]];
     const Eigen::Vector3d centroid = (a + b + c) / 3.0;
-    for (const View& view : views) {
-      if (PixelInView(view, centroid).has_value()) {
+    for (size_t view = 0; view < visibility.NumViews(); ++view) {
+      if (visibility.PixelInView(view, centroid).has_value()) {
         areas[t] = 0.5 * (b - a).cross(c - a).norm();
         return;
       }
@@ -254,13 +174,14 @@ Reconstruction ObserveModel(const Reconstruction& truth,
                             const ObserveOptions& options,
                             ObserveSummary* summary) {
   options.Check();
-  const std::vector<View> views = MakeViews(truth);
-  if (views.size() < 2) {
+  if (truth.Images().size() < 2) {
     throw ErrorAt("observe needs at least 2 images, the model has ",
-                  views.size());
+                  truth.Images().size());
   }
   const RayCaster caster(mesh);
-  const std::vector<double> cumulative_area = CumulativeSeenArea(mesh, views);
+  const SurfaceVisibility visibility(truth, caster);
+  const std::vector<double> cumulative_area =
+      CumulativeSeenArea(mesh, visibility);
   if (!(cumulative_area.back() > 0.0)) {
     throw ErrorAt("no triangle of the mesh is in view of any image");
   }
@@ -288,9 +209,9 @@ Reconstruction ObserveModel(const Reconstruction& truth,
     for (Eigen::Vector3d& candidate : candidates) {
       candidate = SamplePoint(mesh, cumulative_area, &sampling);
     }
-    std::vector<std::vector<Observation>> observations(batch);
+    std::vector<std::vector<SurfaceObservation>> observations(batch);
     tbb::parallel_for(size_t(0), batch, [&](size_t i) {
-      observations[i] = Observe(views, caster, candidates[i]);
+      observations[i] = visibility.Observe(candidates[i]);
     });
     for (size_t i = 0; i < batch && result.num_points < wanted; ++i) {
       ++result.num_candidates;
@@ -299,7 +220,7 @@ Reconstruction ObserveModel(const Reconstruction& truth,
       point.point3D_id = ++result.num_points;
       point.xyz = candidates[i];
       point.color.setConstant(128);
-      for (const Observation& observation : observations[i]) {
+      for (const SurfaceObservation& observation : observations[i]) {
         Image& image = model.Images()[observation.view];
         Point2D point2D;
         const double dx = noise.Gaussian();

@@ -138,10 +138,12 @@ struct Row {
   double sim_rmse_m = 0.0;
   double sim_percent = 0.0;
   double scale_error_percent = 0.0;
+  double surface_rms_m = 0.0;
+  double sagitta_m = 0.0;
   double time_s = 0.0;
 };
 
-// The rows after the header line "method ...": a label, then five numbers.
+// The rows after the header line "method ...": a label, then seven numbers.
 std::map<std::string, Row> ParseTable(const std::string& table) {
   std::map<std::string, Row> rows;
   std::istringstream lines(table);
@@ -155,13 +157,14 @@ std::map<std::string, Row> ParseTable(const std::string& table) {
     std::vector<std::string> words;
     std::istringstream split(line);
     for (std::string word; split >> word;) words.push_back(word);
-    if (!in_table || words.size() < 6) continue;
+    if (!in_table || words.size() < 8) continue;
     const auto number = [&](size_t from_end) {
       return std::stod(words[words.size() - from_end]);
     };
     std::string label = words[0];
-    for (size_t k = 1; k + 5 < words.size(); ++k) label += " " + words[k];
-    rows[label] = {number(5), number(4), number(3), number(2), number(1)};
+    for (size_t k = 1; k + 7 < words.size(); ++k) label += " " + words[k];
+    rows[label] = {number(7), number(6), number(5), number(4),
+                   number(3), number(2), number(1)};
   }
   return rows;
 }
@@ -206,8 +209,22 @@ TEST(CompareWithColmap, ScriptPrintsOneTable) {
   EXPECT_NEAR(ours.sim_rmse_m, colmap.sim_rmse_m, 1e-4);
   EXPECT_NEAR(posterior.sim_rmse_m, ours.sim_rmse_m, 1e-4);
   EXPECT_NEAR(posterior.abs_rmse_m, ours.abs_rmse_m, 0.05);
+  // table.csv: the same rows, one header.
+  const std::string csv = ReadFileToString(dir / "out" / "table.csv");
+  EXPECT_EQ(csv.rfind("method,abs_rmse_m,sim_rmse_m,sim_percent_of_extent,"
+                      "scale_error_percent,surface_rms_m,sagitta_m,time_s\n",
+                      0),
+            0u)
+      << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6) << csv;
   for (const auto& [label, row] : rows) {
     EXPECT_GT(row.time_s, 0.0) << label;
+    // Every model keeps the sparse points' shape: a few mm from the true
+    // floor after the similarity (model_comparer_test), no dome over the
+    // 6 m track.
+    EXPECT_GT(row.surface_rms_m, 0.0) << label;
+    EXPECT_LT(row.surface_rms_m, 0.02) << label;
+    EXPECT_LT(std::abs(row.sagitta_m), 0.005) << label;
     // uwsim's navigation: ~1 m horizontal noise per image over a 6.6 m
     // survey, so the absolute error is about that.
     EXPECT_LT(row.abs_rmse_m, 2.0) << label;

@@ -69,4 +69,22 @@ Eigen::Vector3d CameraModelCamFromImg(CameraModelId id, const double* params,
   });
 }
 
+Eigen::Vector2d CameraModelFocalLengths(CameraModelId id,
+                                        const double* params) {
+  return VisitCameraModel(id, [&](auto tag) {
+    using Model = typename decltype(tag)::type;
+    return Eigen::Vector2d(params[Model::kFocalLengthIdxs.front()],
+                           params[Model::kFocalLengthIdxs.back()]);
+  });
+}
+
+Eigen::Vector2d CameraModelPrincipalPoint(CameraModelId id,
+                                          const double* params) {
+  return VisitCameraModel(id, [&](auto tag) {
+    using Model = typename decltype(tag)::type;
+    return Eigen::Vector2d(params[Model::kPrincipalPointIdxs[0]],
+                           params[Model::kPrincipalPointIdxs[1]]);
+  });
+}
+
 }  // namespace uw

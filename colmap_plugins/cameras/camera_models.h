@@ -705,4 +705,12 @@ Eigen::Vector2d CameraModelImgFromCam(CameraModelId id, const double* params,
 Eigen::Vector3d CameraModelCamFromImg(CameraModelId id, const double* params,
                                       const Eigen::Vector2d& pixel);
 
+// Focal lengths (fx, fy) in pixels; models with one focal length return it
+// twice.
+Eigen::Vector2d CameraModelFocalLengths(CameraModelId id, const double* params);
+
+// Principal point (cx, cy) in COLMAP's pixel convention.
+Eigen::Vector2d CameraModelPrincipalPoint(CameraModelId id,
+                                          const double* params);
+
 }  // namespace uw

@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 
+#include "colmap_plugins/align/mesh_comparison.h"
 #include "colmap_plugins/align/model_comparison.h"
 #include "colmap_plugins/align/path_association.h"
 #include "colmap_plugins/align/reference_positions.h"
@@ -518,6 +519,28 @@ void PrintComparison(const ModelComparison& comparison,
   }
 }
 
+void PrintMeshComparison(const MeshComparison& dense,
+                         const std::string& dense_mesh_path) {
+  std::printf("Dense surface: %s (after the alignment)\n",
+              dense_mesh_path.c_str());
+  std::printf(
+      "  camera-scene distance (median along the optical axes): "
+      "%.6g m\n",
+      dense.camera_scene_distance);
+  std::printf(
+      "  distance to the reference surface over %zu samples: median "
+      "%.6g m (%.3f %% of the camera-scene distance), 90 %% %.6g m, "
+      "RMS %.6g m, signed mean %.6g m\n",
+      dense.num_samples, dense.median,
+      100.0 * dense.median / dense.camera_scene_distance, dense.p90, dense.rms,
+      dense.mean_signed);
+  std::printf(
+      "  coverage: %.2f %% of the %.6g m^2 seen by >= %d reference "
+      "images lie within %.4g m of the dense surface\n",
+      100.0 * dense.coverage, dense.observed_area, dense.min_views,
+      dense.coverage_tolerance);
+}
+
 }  // namespace
 
 int RunModelComparer(int argc, char** argv) {
@@ -540,6 +563,8 @@ int RunModelComparer(int argc, char** argv) {
   std::string ref_path;
   std::string truth_dir;
   std::string mesh_path;
+  std::string dense_mesh_path;
+  MeshComparisonOptions dense_options;
   std::string output_path;
   std::string robust_alignment = "0";
   std::string alignment = "similarity";
@@ -552,6 +577,14 @@ int RunModelComparer(int argc, char** argv) {
   app.add_option("--mesh_path", mesh_path,
                  "Reference surface (PLY triangle mesh in the reference's "
                  "frame); default with --truth_dir: truth/mesh.ply");
+  app.add_option("--dense_mesh_path", dense_mesh_path,
+                 "The model's dense surface (PLY/OBJ in the model's frame, "
+                 "e.g. from dense_mesher): its accuracy and coverage against "
+                 "the reference surface, after the alignment");
+  app.add_option("--dense_min_views", dense_options.min_views,
+                 "Reference images that must see a true triangle for it to "
+                 "count as observed (coverage)")
+      ->capture_default_str();
   app.add_option("--segments", options.num_segments,
                  "Segments along the track for the per-segment scale")
       ->default_val(6);
@@ -593,16 +626,29 @@ int RunModelComparer(int argc, char** argv) {
     }
     const Reconstruction model = ReadModel(input_path);
     const Reconstruction reference = ReadModel(reference_path);
+    if (!dense_mesh_path.empty() && mesh_path.empty()) {
+      throw Error(
+          "--dense_mesh_path needs a reference surface: --truth_dir or "
+          "--mesh_path");
+    }
+    TriangleMesh reference_mesh;
     std::optional<MeshDistance> surface;
     if (!mesh_path.empty()) {
-      TriangleMesh mesh = ReadPly(mesh_path);
-      surface.emplace(std::move(mesh.vertices), std::move(mesh.triangles));
+      reference_mesh = ReadPly(mesh_path);
+      surface.emplace(reference_mesh.vertices, reference_mesh.triangles);
     }
     const ModelComparison comparison =
         CompareModels(model, reference, surface ? &*surface : nullptr, options);
     std::printf("Model: %s\nReference: %s\n", input_path.c_str(),
                 reference_path.c_str());
     PrintComparison(comparison, mesh_path, options);
+    std::optional<MeshComparison> dense;
+    if (!dense_mesh_path.empty()) {
+      dense = CompareMeshes(TransformMesh(comparison.alignment.b_from_a,
+                                          ReadMesh(dense_mesh_path)),
+                            reference_mesh, reference, dense_options);
+      PrintMeshComparison(*dense, dense_mesh_path);
+    }
     if (!output_path.empty()) {
       nlohmann::json json = ToJson(comparison);
       json["model_path"] = input_path;
@@ -610,6 +656,10 @@ int RunModelComparer(int argc, char** argv) {
       json["mesh_path"] = mesh_path.empty() ? nlohmann::json(nullptr)
                                             : nlohmann::json(mesh_path);
       json["max_reprojection_error_px"] = options.max_reprojection_error_px;
+      json["dense_mesh_path"] = dense_mesh_path.empty()
+                                    ? nlohmann::json(nullptr)
+                                    : nlohmann::json(dense_mesh_path);
+      json["dense_surface"] = dense ? ToJson(*dense) : nlohmann::json(nullptr);
       WriteJson(json, output_path);
       std::printf("Wrote %s\n", output_path.c_str());
     }

@@ -4,6 +4,7 @@
 #include "colmap_plugins/exe/ba_commands.h"
 #include "colmap_plugins/exe/command.h"
 #include "colmap_plugins/exe/database_commands.h"
+#include "colmap_plugins/exe/dense_commands.h"
 #include "colmap_plugins/exe/model_commands.h"
 #include "colmap_plugins/exe/nav_commands.h"
 
@@ -18,6 +19,8 @@ int main(int argc, char** argv) {
            "bundle adjustment fused with navigation, dive offsets, soft rigs"},
           {"database_analyzer", uw::RunDatabaseAnalyzer,
            "print the schema and contents of a COLMAP database"},
+          {"dense_mesher", uw::RunDenseMesher,
+           "dense surface (PLY) of a model on the CPU: depth maps + Poisson"},
           {"lcurve", uw::RunLCurve,
            "sweep the navigation weight; L-curve plot and corner"},
           {"model_aligner", uw::RunModelAligner,

@@ -2,6 +2,7 @@
 
 #include "colmap_plugins/align/sim3.h"
 #include "colmap_plugins/exe/command.h"
+#include "colmap_plugins/mesh/mesh.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "colmap_plugins/util/error.h"
 #include "laserscale/exe/commands.h"
@@ -13,10 +14,12 @@ int RunApply(int argc, char** argv) {
   CLI::App app(
       "Scales a COLMAP model to metres by the scale s of `laserscale "
       "estimate` (about the world origin: points and camera centres times s, "
-      "orientations unchanged). The input is never modified.\n\n"
+      "orientations unchanged), and optionally its mesh (vertices times s). "
+      "The inputs are never modified.\n\n"
       "Example:\n"
       "  laserscale apply --input_path sparse/0 --scale report/scale.json "
-      "--output_path sparse_metric",
+      "--output_path sparse_metric --input_mesh mesh.ply --output_mesh "
+      "mesh_metric.ply",
       "laserscale apply");
   std::string input_path;
   std::string scale_path;
@@ -30,6 +33,12 @@ int RunApply(int argc, char** argv) {
       ->required();
   app.add_option("--output_type", output_type, "BIN or TXT")
       ->capture_default_str();
+  std::string input_mesh;
+  std::string output_mesh;
+  app.add_option("--input_mesh", input_mesh,
+                 "The model's mesh (PLY or OBJ, model frame) to scale too");
+  app.add_option("--output_mesh", output_mesh,
+                 "PLY for the scaled mesh (with --input_mesh)");
   return RunCommand(app, argc, argv, [&] {
     if (output_type != "BIN" && output_type != "TXT") {
       throw ErrorAt("--output_type must be BIN or TXT, got ", output_type);
@@ -37,6 +46,13 @@ int RunApply(int argc, char** argv) {
     if (std::filesystem::exists(output_path) &&
         std::filesystem::equivalent(input_path, output_path)) {
       throw ErrorAt("--output_path is the input model; choose another folder");
+    }
+    if (input_mesh.empty() != output_mesh.empty()) {
+      throw Error("--input_mesh and --output_mesh go together");
+    }
+    if (!input_mesh.empty() && std::filesystem::exists(output_mesh) &&
+        std::filesystem::equivalent(input_mesh, output_mesh)) {
+      throw ErrorAt("--output_mesh is the input mesh; choose another file");
     }
     const double scale = ReadScaleFromJson(scale_path);
     Reconstruction model = ReadModel(input_path);
@@ -49,6 +65,15 @@ int RunApply(int argc, char** argv) {
         output_type == "BIN" ? ModelFormat::kBinary : ModelFormat::kText);
     std::printf("[apply] model scaled by %.6f into %s\n", scale,
                 output_path.c_str());
+    if (!input_mesh.empty()) {
+      TriangleMesh mesh = ReadMesh(input_mesh);
+      for (Eigen::Vector3d& vertex : mesh.vertices) {
+        vertex = scaled_from_model * vertex;
+      }
+      WritePly(mesh, output_mesh);
+      std::printf("[apply] mesh scaled by %.6f into %s\n", scale,
+                  output_mesh.c_str());
+    }
   });
 }
 

@@ -1,0 +1,127 @@
+// scripts/demo.sh, reduced: the default survey and laser images of the
+// fixtures (instead of generating and matching them again), depth maps at
+// 512 px and 2000 Monte Carlo samples; every other stage as in the full
+// demo (issue 7, acceptance 2 and 3).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "colmap_plugins/util/file.h"
+#include "tests/support/process.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::FreshTestDir;
+using testing::Quoted;
+using testing::RunProcess;
+
+const fs::path kSurveyDir = UW_SURVEY_DIR;
+const fs::path kLaserDir = UW_LASER_DIR;
+const fs::path kScript = fs::path(UW_SOURCE_DIR) / "scripts" / "demo.sh";
+
+nlohmann::json ReadJson(const fs::path& path) {
+  return nlohmann::json::parse(ReadFileToString(path));
+}
+
+TEST(Demo, ReducedDemoRunsEndToEndAndPrintsTheSummary) {
+  const fs::path dir = FreshTestDir("uw_demo_test") / "demo";
+  const auto result = RunProcess(
+      "UW_BUILD_DIR=" + Quoted(UW_BUILD_DIR) + " bash " + Quoted(kScript) +
+          " " + Quoted(dir) + " --no_setup --survey " + Quoted(kSurveyDir) +
+          " --laser_database " + Quoted(kLaserDir / "database.db") +
+          " --max_image_size 512 --mc 2000",
+      true);
+  std::cout << result.output.substr(result.output.find("===") ==
+                                            std::string::npos
+                                        ? 0
+                                        : result.output.find("==="));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  // The summary, every line of it.
+  for (const char* line :
+       {"Registered images: 33 of 33",
+        "Laser scale of the navigation-fused "
+        "model: s = ",
+        "(the truth is inside the interval)",
+        "Dense mesh vs the true surface: median ", "stock colmap mapper",
+        "stock colmap BA + model_aligner (camera centres)",
+        "ours: bundle_adjuster --Nav.strategy prior", "ours + laserscale apply",
+        "Time per stage (s):", "dense_mesher", "laserscale apply",
+        "total (after setup)"}) {
+    EXPECT_NE(result.output.find(line), std::string::npos) << line;
+  }
+
+  // Acceptance 2: the chain's scale within its own 95 % interval of the
+  // truth (the similarity of the navigation-fused model to uwsim's true
+  // cameras), and within 1 %.
+  const nlohmann::json scale =
+      ReadJson(dir / "laser" / "report" / "scale.json");
+  const double s = scale.at("scale").get<double>();
+  const double low = scale.at("ci95")[0].get<double>();
+  const double high = scale.at("ci95")[1].get<double>();
+  const nlohmann::json model_compare = ReadJson(dir / "dense" / "compare.json");
+  const double true_scale = model_compare.at("alignment")
+                                .at("reference_from_model")
+                                .at("scale")
+                                .get<double>();
+  std::printf(
+      "[ figures ] laser scale s = %.5f [%.5f, %.5f], truth %.5f, error "
+      "%+.3f %%, %d of %d images\n",
+      s, low, high, true_scale, 100.0 * (s / true_scale - 1.0),
+      scale.at("num_accepted").get<int>(), scale.at("num_images").get<int>());
+  EXPECT_LE(low, true_scale);
+  EXPECT_GE(high, true_scale);
+  EXPECT_LT(std::abs(s / true_scale - 1.0), 0.01);
+
+  // The dense mesh of the navigation-fused model (acceptance 1's figures).
+  const nlohmann::json dense = model_compare.at("dense_surface");
+  std::printf(
+      "[ figures ] dense mesh of the fused model: median %.5f m = "
+      "%.4f %% of %.4f m, coverage %.2f %%\n",
+      dense.at("median_distance").get<double>(),
+      100.0 * dense.at("median_over_camera_scene_distance").get<double>(),
+      dense.at("camera_scene_distance").get<double>(),
+      100.0 * dense.at("coverage").get<double>());
+  EXPECT_LT(dense.at("median_over_camera_scene_distance").get<double>(), 0.005);
+  EXPECT_GE(dense.at("coverage").get<double>(), 0.90);
+
+  // laserscale apply: the model in metres is the truth's size to the
+  // scale's own error.
+  const std::string metric =
+      ReadFileToString(dir / "logs" / "compare_metric_similarity.log");
+  const size_t at = metric.find(": scale ");
+  ASSERT_NE(at, std::string::npos) << metric;
+  const double remaining = std::stod(metric.substr(at + 8));
+  EXPECT_NEAR(remaining, true_scale / s, 1e-6);
+  EXPECT_TRUE(fs::exists(dir / "metric" / "mesh.ply"));
+
+  // timings.csv: a header, one line per stage, the total.
+  const std::string timings = ReadFileToString(dir / "timings.csv");
+  EXPECT_EQ(timings.rfind("stage,seconds\n", 0), 0u) << timings;
+  EXPECT_NE(timings.find("\"dense_mesher\","), std::string::npos) << timings;
+  EXPECT_NE(timings.find("\"total\","), std::string::npos) << timings;
+}
+
+TEST(Demo, RefusesAFolderItDidNotMake) {
+  const fs::path dir = FreshTestDir("uw_demo_refuse_test");
+  WriteFilesAtomically(
+      {{dir / "keep.txt", [](std::ostream& out) { out << "user data\n"; }}},
+      false);
+  const auto result = RunProcess(
+      "UW_BUILD_DIR=" + Quoted(UW_BUILD_DIR) + " bash " + Quoted(kScript) +
+          " " + Quoted(dir) + " --no_setup --survey " + Quoted(kSurveyDir),
+      true);
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("was not made by this script"),
+            std::string::npos)
+      << result.output;
+  EXPECT_EQ(ReadFileToString(dir / "keep.txt"), "user data\n");
+}
+
+}  // namespace
+}  // namespace uw
