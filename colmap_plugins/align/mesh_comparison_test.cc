@@ -11,6 +11,7 @@
 
 #include "colmap_plugins/mesh/test_meshes.h"
 #include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/error_testing.h"
 
 namespace uw {
 namespace {
@@ -303,17 +304,6 @@ TEST(CompareMeshes, ToJsonReportsEveryField) {
   EXPECT_DOUBLE_EQ(json.at("coverage").get<double>(), 1.0);
   EXPECT_EQ(json.at("coverage_min_views").get<int>(), 2);
   EXPECT_EQ(json.at("num_samples").get<size_t>(), 20000u);
-}
-
-void ExpectErrorContaining(const std::function<void()>& body,
-                           const std::string& text) {
-  try {
-    body();
-    ADD_FAILURE() << "no error; expected one containing '" << text << "'";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find(text), std::string::npos)
-        << error.what();
-  }
 }
 
 TEST(CompareMeshes, InvalidInputsThrow) {

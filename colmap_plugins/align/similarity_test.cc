@@ -5,6 +5,7 @@
 #include <random>
 
 #include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/error_testing.h"
 
 namespace uw {
 namespace {
@@ -195,17 +196,6 @@ TEST(EstimateSimilarity, CovarianceWeightingBeatsUnweightedWithOneNoisyAxis) {
   }
   // chi-square with 3 * 60 − 7 degrees of freedom.
   EXPECT_NEAR(squared_sum / (3 * 60 - 7), 1.0, 0.35);
-}
-
-void ExpectErrorContaining(const std::function<void()>& body,
-                           const std::string& text) {
-  try {
-    body();
-    ADD_FAILURE() << "no error; expected one containing '" << text << "'";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find(text), std::string::npos)
-        << error.what();
-  }
 }
 
 TEST(EstimateSimilarity, DegenerateInputsThrow) {

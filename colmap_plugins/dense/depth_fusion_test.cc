@@ -11,6 +11,7 @@
 #include <tbb/task_arena.h>
 
 #include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/error_testing.h"
 
 namespace uw {
 namespace {
@@ -307,17 +308,6 @@ TEST(FuseDepthMaps, ResultDoesNotDependOnThreads) {
     ASSERT_EQ(one_thread.points[i], two_threads.points[i]) << i;
     ASSERT_EQ(one_thread.normals[i], two_threads.normals[i]) << i;
     ASSERT_EQ(one_thread.num_images[i], two_threads.num_images[i]) << i;
-  }
-}
-
-void ExpectErrorContaining(const std::function<void()>& body,
-                           const std::string& text) {
-  try {
-    body();
-    ADD_FAILURE() << "no error; expected one containing '" << text << "'";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find(text), std::string::npos)
-        << error.what();
   }
 }
 

@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/error_testing.h"
 
 namespace uw {
 namespace {
@@ -111,17 +112,6 @@ PatternErrors CompareWithPattern(const PinholeView& view, const Camera& camera,
     }
   }
   return errors;
-}
-
-void ExpectErrorContaining(const std::function<void()>& body,
-                           const std::string& text) {
-  try {
-    body();
-    ADD_FAILURE() << "no error; expected one containing '" << text << "'";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find(text), std::string::npos)
-        << error.what();
-  }
 }
 
 // The test's own premise: half a pixel of the wrong convention, or ignoring

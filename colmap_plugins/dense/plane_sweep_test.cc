@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/error_testing.h"
 #include "colmap_plugins/util/random.h"
 
 namespace uw {
@@ -359,17 +360,6 @@ TEST(PlaneSweepDepth, TexturelessImagesGiveNoDepth) {
                     2.5, 7.0, kTolerance);
   EXPECT_GE(errors.num_accurate, 0.99 * errors.num_pixels)
       << errors.num_accurate << " of " << errors.num_pixels;
-}
-
-void ExpectErrorContaining(const std::function<void()>& body,
-                           const std::string& text) {
-  try {
-    body();
-    ADD_FAILURE() << "no error; expected one containing '" << text << "'";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find(text), std::string::npos)
-        << error.what();
-  }
 }
 
 TEST(PlaneSweepDepth, InvalidInputsThrow) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/error_testing.h"
 #include "colmap_plugins/util/file.h"
 
 namespace uw {
@@ -208,17 +209,6 @@ TEST_F(PoissonSurfaceTest, WriteOrientedPlyWritesColmapsLayout) {
     for (int k = 0; k < 3; ++k) {
       EXPECT_EQ(static_cast<unsigned char>(record[24 + k]), 128);
     }
-  }
-}
-
-void ExpectErrorContaining(const std::function<void()>& body,
-                           const std::string& text) {
-  try {
-    body();
-    ADD_FAILURE() << "no error; expected one containing '" << text << "'";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find(text), std::string::npos)
-        << error.what();
   }
 }
 

@@ -11,6 +11,7 @@
 
 #include "colmap_plugins/mesh/test_meshes.h"
 #include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/error_testing.h"
 
 namespace uw {
 namespace {
@@ -212,17 +213,6 @@ TEST(TrimUnsupported, ComponentsAreCountedAfterTrimming) {
   EXPECT_EQ(TrimUnsupported(mesh, support, options).triangles.size(), 840u);
   options.min_component_fraction = 0.06;
   EXPECT_EQ(TrimUnsupported(mesh, support, options).triangles.size(), 800u);
-}
-
-void ExpectErrorContaining(const std::function<void()>& body,
-                           const std::string& text) {
-  try {
-    body();
-    ADD_FAILURE() << "no error; expected one containing '" << text << "'";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find(text), std::string::npos)
-        << error.what();
-  }
 }
 
 TEST(TrimmingOptions, CheckRejectsBadFields) {

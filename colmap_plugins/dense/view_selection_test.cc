@@ -9,6 +9,7 @@
 #include <string>
 
 #include "colmap_plugins/util/error.h"
+#include "colmap_plugins/util/error_testing.h"
 
 namespace uw {
 namespace {
@@ -223,17 +224,6 @@ TEST(SelectViews, QuantilesTrimTheDepthRange) {
     // The central half, to one rank.
     EXPECT_NEAR(static_cast<double>(inside) / depths.size(), 0.5,
                 2.0 / depths.size());
-  }
-}
-
-void ExpectErrorContaining(const std::function<void()>& body,
-                           const std::string& text) {
-  try {
-    body();
-    ADD_FAILURE() << "no error; expected one containing '" << text << "'";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find(text), std::string::npos)
-        << error.what();
   }
 }
 
