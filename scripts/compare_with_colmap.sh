@@ -16,6 +16,16 @@
 #                   --Nav.weight in NAV_WEIGHTS (default: auto, lambda
 #                   from the estimated noise levels)
 #
+# With --laser_database, the whole chain for stock colmap's model aligned to
+# the navigation (camera centres, or vehicle positions without a database)
+# and for ours (prior, the first weight): uwcolmap dense_mesher on the
+# model, laserscale detect / localize / estimate on that mesh with SIM_DIR's
+# laser images, laserscale apply; one more row per chain ("... +
+# dense_mesher + laserscale apply", the scaled model against the truth) and
+# OUT_DIR/chain.csv: the laser scale, its 95 % interval, the truth (the
+# similarity of the unscaled model to the true cameras), its error, and the
+# dense mesh's accuracy and coverage against the true surface.
+#
 # Columns: camera RMSE vs truth as the model stands (absolute: every result
 # is in the navigation's frame) and after a least-squares similarity to the
 # truth; scale error s - 1 with s the scale of that similarity
@@ -33,13 +43,17 @@
 # OUT_DIR     new or empty folder: one model per row, logs/, table.txt
 # flags       --BundleAdjustment.NAME VALUE: given to both bundle
 #             adjusters; --database_path DB: the images' database
-#             (default MODEL_DIR/../../database.db when it exists); any
+#             (default MODEL_DIR/../../database.db when it exists);
+#             --laser_database DB: the database with SIM_DIR's laser images
+#             (scripts/add_laser_images.sh) for the whole chain, with
+#             --DenseMesher.max_image_size N (512) and --mc N (5000); any
 #             other flag describes the camera on the vehicle and goes to
 #             uwcolmap (--mount, --lever_arm, --boresight, --time_offset,
 #             --image_times)
 #
-# Environment: COLMAP, UWCOLMAP (programs; default colmap on PATH and
-# build/bin/uwcolmap), NAV_WEIGHTS (e.g. "auto 0.5").
+# Environment: COLMAP, UWCOLMAP, LASERSCALE (programs; default colmap on
+# PATH, build/bin/uwcolmap and build/bin/laserscale), NAV_WEIGHTS (e.g.
+# "auto 0.5"). Every step's wall time goes to OUT_DIR/timings.csv.
 #
 # Example (the survey of scripts/reconstruct_uwsim_survey.sh):
 #   bash scripts/compare_with_colmap.sh build/tests/uwsim_survey/sim \
@@ -57,11 +71,15 @@ shift 3
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 colmap=${COLMAP:-colmap}
 uwcolmap=${UWCOLMAP:-$root/build/bin/uwcolmap}
+laserscale=${LASERSCALE:-$root/build/bin/laserscale}
 read -r -a nav_weights <<< "${NAV_WEIGHTS:-auto}"
 
 ba_flags=()
 mount_flags=()
 database=""
+laser_database=""
+max_image_size=512
+mc=5000
 while [[ $# -gt 0 ]]; do
   if [[ $# -lt 2 ]]; then
     echo "compare_with_colmap: flag $1 has no value" >&2
@@ -70,6 +88,9 @@ while [[ $# -gt 0 ]]; do
   case $1 in
     --BundleAdjustment.*) ba_flags+=("$1" "$2") ;;
     --database_path) database=$2 ;;
+    --laser_database) laser_database=$2 ;;
+    --DenseMesher.max_image_size) max_image_size=$2 ;;
+    --mc) mc=$2 ;;
     *) mount_flags+=("$1" "$2") ;;
   esac
   shift 2
@@ -77,7 +98,11 @@ done
 if [[ -z "$database" && -f "$model/../../database.db" ]]; then
   database="$model/../../database.db"
 fi
-for path in "$sim/nav.csv" "$sim/truth" "$model"; do
+required=("$sim/nav.csv" "$sim/truth" "$model")
+if [[ -n "$laser_database" ]]; then
+  required+=("$laser_database" "$sim/laser_images" "$sim/lasers.json" "$sim/images")
+fi
+for path in "${required[@]}"; do
   if [[ ! -e "$path" ]]; then
     echo "compare_with_colmap: $path does not exist" >&2
     exit 1
@@ -96,14 +121,17 @@ touch "$out/$marker"
 
 now() { date +%s.%N; }
 seconds_since() { awk -v a="$1" -v b="$(now)" 'BEGIN { printf "%.2f", b - a }'; }
-run() {  # run NAME COMMAND...: keep the step's log, show it on failure
-  local name=$1
+echo "step,seconds" > "$out/timings.csv"
+run() {  # run NAME COMMAND...: keep the step's log and time, show it on failure
+  local name=$1 step_start
   shift
+  step_start=$(now)
   if ! "$@" > "$out/logs/$name.log" 2>&1; then
     tail -n 30 "$out/logs/$name.log"
     echo "compare_with_colmap: step '$name' failed (log: $out/logs/$name.log)" >&2
     exit 1
   fi
+  echo "$name,$(seconds_since "$step_start")" >> "$out/timings.csv"
 }
 
 # colmap's inlier threshold: 3 x the navigation's RMS 3D sigma
@@ -230,6 +258,70 @@ for weight in "${nav_weights[@]}"; do
     "$out/ours_prior_$weight" "$seconds"
 done
 
+# The whole chain: dense mesh, laser scale on it, the model in metres.
+chain_rows=()
+chain() {  # chain LABEL MODEL_DIR
+  local label=$1 dir=$2 name work start dense_s laser_s
+  name=$(basename "$dir")
+  work="$out/chain/$name"
+  mkdir -p "$work"
+  start=$(now)
+  run "dense_mesher_$name" "$uwcolmap" dense_mesher --input_path "$dir" \
+    --image_path "$sim/images" --output_path "$work/mesh.ply" \
+    --DenseMesher.max_image_size "$max_image_size"
+  dense_s=$(seconds_since "$start")
+  run "compare_${name}_dense" "$uwcolmap" model_comparer --input_path "$dir" \
+    --truth_dir "$sim" --dense_mesh_path "$work/mesh.ply" \
+    --output_path "$work/compare.json"
+  start=$(now)
+  run "laserscale_detect_$name" "$laserscale" detect \
+    --images "$sim/laser_images" --lasers "$sim/lasers.json" \
+    --input_path "$dir" --out "$work/spots.json" --overlays "$work/overlays"
+  run "laserscale_localize_$name" "$laserscale" localize \
+    --database_path "$laser_database" --input_path "$dir" \
+    --image_list_path "$out/laser_list.txt" --out "$work/poses.json"
+  run "laserscale_estimate_$name" "$laserscale" estimate --mesh "$work/mesh.ply" \
+    --poses "$work/poses.json" --spots "$work/spots.json" \
+    --lasers "$sim/lasers.json" --overlays "$work/overlays" --mc "$mc" \
+    --out "$work/report"
+  run "laserscale_apply_$name" "$laserscale" apply --input_path "$dir" \
+    --scale "$work/report/scale.json" --output_path "$out/${name}_laser" \
+    --input_mesh "$work/mesh.ply" --output_mesh "$out/${name}_laser/mesh.ply"
+  laser_s=$(seconds_since "$start")
+  add_row "$label + dense_mesher + laserscale apply" "$out/${name}_laser" \
+    "$(awk -v a="$dense_s" -v b="$laser_s" 'BEGIN { printf "%.2f", a + b }')"
+  chain_rows+=("$(python3 - "$label" "$work" "$dense_s" "$laser_s" <<'PY'
+import json, sys
+label, work, dense_s, laser_s = sys.argv[1:]
+scale = json.load(open(work + "/report/scale.json"))
+compare = json.load(open(work + "/compare.json"))
+truth = compare["alignment"]["reference_from_model"]["scale"]
+dense = compare["dense_surface"]
+s, (low, high) = scale["scale"], scale["ci95"]
+print('"%s",%.6f,%.6f,%.6f,%.6f,%+.4f,%d,%d,%d,%.6f,%.4f,%.2f,%s,%s' % (
+    label, s, low, high, truth, 100 * (s / truth - 1), low <= truth <= high,
+    scale["num_accepted"], scale["num_images"], dense["median_distance"],
+    100 * dense["median_over_camera_scene_distance"], 100 * dense["coverage"],
+    dense_s, laser_s))
+PY
+)")
+}
+if [[ -n "$laser_database" ]]; then
+  find "$sim/laser_images" -maxdepth 1 -type f ! -name '*_aux.*' -printf '%f\n' |
+    sort > "$out/laser_list.txt"
+  if [[ -n "$database" ]]; then
+    chain "colmap BA + model_aligner (camera centres)" "$out/colmap_camera"
+  else
+    chain "colmap BA + model_aligner (vehicle positions)" "$out/colmap_vehicle"
+  fi
+  chain "ours --Nav.strategy prior --Nav.weight ${nav_weights[0]}" \
+    "$out/ours_prior_${nav_weights[0]}"
+  {
+    echo "method,laser_scale,ci95_low,ci95_high,true_scale,scale_error_percent,truth_in_ci95,accepted_images,laser_images,mesh_median_m,mesh_median_percent_of_range,mesh_coverage_percent,dense_s,laser_s"
+    printf '%s\n' "${chain_rows[@]}"
+  } > "$out/chain.csv"
+fi
+
 {
   echo "Truth: $sim/truth, camera extent $truth_extent m." \
     "colmap model_aligner inlier threshold $max_error m."
@@ -244,3 +336,10 @@ done
   echo "method,abs_rmse_m,sim_rmse_m,sim_percent_of_extent,scale_error_percent,surface_rms_m,sagitta_m,time_s"
   printf '%s\n' "${csv_rows[@]}"
 } > "$out/table.csv"
+if [[ -n "$laser_database" ]]; then
+  echo "Whole chain (dense_mesher at $max_image_size px, laser scale with $mc Monte Carlo samples; $out/chain.csv):"
+  awk -F, 'NR > 1 { gsub(/"/, "", $1)
+    printf "  %s: s = %.5f [%.5f, %.5f], truth %.5f, error %+.3f %% (%s), %d of %d laser images; mesh median %.2f mm = %.3f %% of the range, coverage %.1f %%\n",
+      $1, $2, $3, $4, $5, $6, $7 ? "inside its 95 % interval" : "OUTSIDE its 95 % interval",
+      $8, $9, 1000 * $10, $11, $12 }' "$out/chain.csv"
+fi

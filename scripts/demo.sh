@@ -7,19 +7,20 @@
 #      3.8: features, matching, mapper
 #   2. what uwmetric reads from colmap's files (database, model, a lossless
 #      BIN round trip)
-#   3. navigation: stock colmap bundle_adjuster + model_aligner against
-#      uwcolmap pose_prior_importer + bundle_adjuster --Nav.strategy prior
-#      (scripts/compare_with_colmap.sh)
-#   4. uwcolmap dense_mesher on the navigation-fused model, measured against
-#      the true surface
-#   5. laserscale detect / localize / estimate on the dense mesh, then
-#      laserscale apply (model and mesh in metres)
+#   3. the laser images, added to a copy of colmap's database
+#   4. the whole chain, stock colmap vs ours (scripts/compare_with_colmap.sh
+#      --laser_database): stock colmap bundle_adjuster + model_aligner onto
+#      the navigation against uwcolmap pose_prior_importer + bundle_adjuster
+#      --Nav.strategy prior; then for both models uwcolmap dense_mesher,
+#      laserscale detect / localize / estimate on that mesh, laserscale
+#      apply (model and mesh in metres), each measured against the truth
 #
 # and ends with one summary: registered images, the scale with its 95 %
 # interval and its error against the truth, the stock-vs-ours table (camera
 # RMSE, surface RMS and doming sagitta against the truth), the dense mesh's
 # accuracy and coverage, and the time of every stage (also in
-# OUTPUT_DIR/timings.csv). About 12 minutes on 2 cores.
+# OUTPUT_DIR/timings.csv); then `uwcolmap survey_report` puts it all in
+# OUTPUT_DIR/report/index.html. About 12 minutes on 2 cores.
 #
 #   bash scripts/demo.sh [OUTPUT_DIR] [flags]     # default: out/demo
 #
@@ -130,61 +131,52 @@ echo "cameras.bin, images.bin, points3D.bin: byte-identical after uwmetric's rea
   > "$out/logs/compare_colmap_mapper_similarity.log"
 
 echo
-echo "== 3. Navigation: stock colmap BA + model_aligner vs uwmetric's navigation-fused BA"
-echo "(camera on the vehicle as uwsim places it; the navigation has uwsim's USBL-like"
-echo " errors, ~1 m per image on this 6 m survey: see docs/uwcolmap.md#bundle_adjuster)"
-stage "navigation: colmap BA + model_aligner vs pose_prior_importer + bundle_adjuster" \
-  bash "$root/scripts/compare_with_colmap.sh" "$sim" "$out/sparse/0" \
-  "$out/compare" --mount down --lever_arm 0.6,0,-0.3 --boresight 0.3,-0.5,0.8
-model="$out/compare/ours_prior_auto"
-echo "navigation-fused model (lambda from the noise levels): $model (ba_report.json)"
-
-echo
-echo "== 4. Dense surface of the navigation-fused model (uwcolmap dense_mesher, CPU)"
-mkdir -p "$out/dense"
-stage "dense_mesher" "$bin/uwcolmap" dense_mesher --input_path "$model" \
-  --image_path "$sim/images" --output_path "$out/dense/mesh.ply" \
-  --DenseMesher.max_image_size "$max_image_size" > "$out/logs/dense_mesher.log" 2>&1 ||
-  { tail -n 20 "$out/logs/dense_mesher.log"; fail "dense_mesher failed"; }
-tr '\r' '\n' < "$out/logs/dense_mesher.log" | grep -v '/[0-9]*$' | tail -n 3
-"$bin/uwcolmap" model_comparer --input_path "$model" --truth_dir "$sim" \
-  --dense_mesh_path "$out/dense/mesh.ply" --output_path "$out/dense/compare.json" \
-  > "$out/logs/compare_dense.log"
-grep -A 3 '^Dense surface' "$out/logs/compare_dense.log"
-
-echo
-echo "== 5. Laser scale of the navigation-fused model (laserscale), on the dense mesh"
+echo "== 3. The laser images, added to a copy of colmap's database"
 laser="$out/laser"
 if [[ -n "$laser_database" ]]; then
   [[ -f "$laser_database" ]] || fail "--laser_database $laser_database does not exist"
   mkdir -p "$laser/logs"
-  find "$sim/laser_images" -maxdepth 1 -type f ! -name '*_aux.*' -printf '%f\n' |
-    sort > "$laser/laser_list.txt"
   stage "laser images: copy the database" \
     sqlite3 "$laser_database" ".backup '$laser/database.db'"
 else
   stage "laser images: colmap features + matching" \
     bash "$root/scripts/add_laser_images.sh" "$out" "$laser"
 fi
-laserscale_chain() {
-  "$bin/laserscale" detect --images "$sim/laser_images" \
-    --lasers "$sim/lasers.json" --input_path "$model" \
-    --out "$laser/spots.json" --overlays "$laser/overlays" | tail -n 1
-  "$bin/laserscale" localize --database_path "$laser/database.db" \
-    --input_path "$model" --image_list_path "$laser/laser_list.txt" \
-    --out "$laser/poses.json" | tail -n 1
-  "$bin/laserscale" estimate --mesh "$out/dense/mesh.ply" \
-    --poses "$laser/poses.json" --spots "$laser/spots.json" \
-    --lasers "$sim/lasers.json" --overlays "$laser/overlays" --mc "$mc" \
-    --out "$laser/report" > "$laser/estimate.log"
-  tail -n 1 "$laser/estimate.log"
-}
-stage "laserscale detect + localize + estimate" laserscale_chain
-stage "laserscale apply" "$bin/laserscale" apply --input_path "$model" \
-  --scale "$laser/report/scale.json" --output_path "$out/metric" \
-  --input_mesh "$out/dense/mesh.ply" --output_mesh "$out/metric/mesh.ply"
-"$bin/uwcolmap" model_comparer --input_path "$out/metric" --truth_dir "$sim" \
-  > "$out/logs/compare_metric_similarity.log"
+
+echo
+echo "== 4. The whole chain, stock colmap vs ours (scripts/compare_with_colmap.sh):"
+echo "   stock colmap bundle_adjuster + model_aligner onto the navigation, against"
+echo "   uwcolmap pose_prior_importer + bundle_adjuster --Nav.strategy prior; then"
+echo "   for both: uwcolmap dense_mesher (CPU), laserscale detect / localize /"
+echo "   estimate on that mesh, laserscale apply (model and mesh in metres)"
+echo "(camera on the vehicle as uwsim places it; the navigation has uwsim's USBL-like"
+echo " errors, ~1 m per image on this 6 m survey: see docs/uwcolmap.md#bundle_adjuster)"
+compare_start=$SECONDS
+bash "$root/scripts/compare_with_colmap.sh" "$sim" "$out/sparse/0" \
+  "$out/compare" --mount down --lever_arm 0.6,0,-0.3 --boresight 0.3,-0.5,0.8 \
+  --laser_database "$laser/database.db" \
+  --DenseMesher.max_image_size "$max_image_size" --mc "$mc"
+# Its steps (compare/timings.csv), grouped into the stages of the chain.
+while IFS=, read -r name seconds; do
+  stage_names+=("$name")
+  stage_seconds+=("$seconds")
+done < <(awk -F, 'NR > 1 {
+    if ($1 ~ /^(colmap_|pose_prior)/) g = "stock colmap bundle_adjuster + model_aligner (+ pose_prior_importer)"
+    else if ($1 ~ /^ours_/) g = "uwcolmap bundle_adjuster (no priors + model_aligner; posterior; prior)"
+    else if ($1 ~ /^dense_mesher_/) g = "uwcolmap dense_mesher (stock colmap'"'"'s model and ours)"
+    else if ($1 ~ /^laserscale_(detect|localize|estimate)/) g = "laserscale detect + localize + estimate (both models)"
+    else if ($1 ~ /^laserscale_apply/) g = "laserscale apply (both models)"
+    else g = "uwcolmap model_comparer against the truth"
+    if (!(g in t)) order[n++] = g
+    t[g] += $2 }
+  END { for (k = 0; k < n; ++k) printf "%s,%d\n", order[k], t[order[k]] + 0.5 }' \
+  "$out/compare/timings.csv")
+model="$out/compare/ours_prior_auto"
+chain="$out/compare/chain/ours_prior_auto"
+metric="$out/compare/ours_prior_auto_laser"
+echo "navigation-fused model (lambda from the noise levels): $model (ba_report.json)"
+echo "its dense mesh: $chain/mesh.ply; in metres: $metric (model and mesh.ply)"
+echo "(the chain took $((SECONDS - compare_start)) s)"
 
 # ---------------------------------------------------------------- summary
 total_s=$((SECONDS - start))
@@ -218,18 +210,20 @@ row() {  # row LABEL LOG SCALE_MEANING
 read -r s low high < <(python3 -c '
 import json, sys
 j = json.load(open(sys.argv[1]))
-print(j["scale"], j["ci95"][0], j["ci95"][1])' "$laser/report/scale.json")
+print(j["scale"], j["ci95"][0], j["ci95"][1])' "$chain/report/scale.json")
 # The truth: the scale of the similarity that takes the navigation-fused
 # model onto uwsim's true cameras.
-true_scale=$(sed -n 's/^Alignment reference_from_model.*: scale \([^,]*\),.*/\1/p' \
-  "$out/compare/logs/compare_ours_prior_auto_similarity.log" | head -n 1)
+true_scale=$(python3 -c '
+import json, sys
+print(json.load(open(sys.argv[1]))["alignment"]["reference_from_model"]["scale"])' \
+  "$chain/compare.json")
 read -r accuracy < <(python3 -c '
 import json, sys
 d = json.load(open(sys.argv[1]))["dense_surface"]
 print("median %.2f mm = %.3f %% of the %.2f m camera-scene distance, coverage %.1f %% of %.1f m^2" % (
     1000 * d["median_distance"], 100 * d["median_over_camera_scene_distance"],
     d["camera_scene_distance"], 100 * d["coverage"], d["observed_area"]))' \
-  "$out/dense/compare.json")
+  "$chain/compare.json")
 
 echo
 echo "================================ Summary ================================"
@@ -240,21 +234,34 @@ awk -v s="$s" -v a="$low" -v b="$high" -v t="$true_scale" 'BEGIN {
   inside = (a <= t && t <= b) ? "inside" : "OUTSIDE"
   printf "Laser scale of the navigation-fused model: s = %.5f, 95 %% interval [%.5f, %.5f]\n", s, a, b
   printf "  truth %.5f: error %+.3f %% (the truth is %s the interval)\n", t, 100 * e, inside }'
-echo "Dense mesh vs the true surface: $accuracy"
+echo "Dense mesh of the navigation-fused model vs the true surface: $accuracy"
 echo "Against uwsim's truth, each model aligned by a similarity (a camera-centre fit):"
 printf "  %-50s %12s %12s %12s %12s\n" "model" "camera_rmse_m" "surf_rms_m" \
   "sagitta_m" "scale_error"
 row "stock colmap mapper" "$out/logs/compare_colmap_mapper_similarity.log" arbitrary
 row "stock colmap BA + model_aligner (camera centres)" \
   "$out/compare/logs/compare_colmap_camera_similarity.log" metric
+row "  + dense_mesher + laserscale apply" \
+  "$out/compare/logs/compare_colmap_camera_laser_similarity.log" metric
 row "ours: bundle_adjuster --Nav.strategy prior" \
   "$out/compare/logs/compare_ours_prior_auto_similarity.log" metric
-row "ours + laserscale apply" "$out/logs/compare_metric_similarity.log" metric
+row "  + dense_mesher + laserscale apply" \
+  "$out/compare/logs/compare_ours_prior_auto_laser_similarity.log" metric
 echo "  (scale_error: s_similarity - 1 of a model meant to be in metres;"
-echo "   sagitta < 0: a dome; the absolute errors are in $out/compare/table.txt)"
+echo "   sagitta < 0: a dome; absolute errors and every row: $out/compare/table.txt)"
 echo "Time per stage (s):"
 for i in "${!stage_names[@]}"; do
   printf "  %-78s %5d\n" "${stage_names[$i]}" "${stage_seconds[$i]}"
 done
 printf "  %-78s %5d\n" "total (after setup)" "$total_s"
-echo "Laser report: $laser/report/index.html"
+
+# The survey report: everything above in one self-contained folder.
+"$bin/uwcolmap" survey_report --input_path "$model" \
+  --ba_report "$model/ba_report.json" --nav "$sim/nav.csv" \
+  --laser_report "$chain/report" --compare_table "$out/compare/table.csv" \
+  --dense_comparison "$chain/compare.json" --mesh "$chain/mesh.ply" \
+  --timings "$out/timings.csv" --truth_dir "$sim" --output_path "$out/report" \
+  > "$out/logs/survey_report.log" 2>&1 ||
+  { cat "$out/logs/survey_report.log"; fail "survey_report failed"; }
+echo "Survey report: $out/report/index.html"
+echo "Laser report: $chain/report/index.html"

@@ -27,6 +27,8 @@ packages=(
   libmrcal-dev mrcal python3-mrcal mrgingham
   # AprilTag 3: tags and Kalibr AprilGrids for uwcalib
   libapriltag-dev
+  # headless browser: the survey report's render test (tests/report_render_test.cc)
+  chromium
 )
 
 missing=()

@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
       "--sim sim --out sim_map.png [--width 1600]");
   std::string map_sim;
   std::string map_out;
-  uw::sim::SurveyMapOptions map_options;
+  uw::SurveyMapOptions map_options;
   map_command->add_option("--sim", map_sim, "Output folder of uwsim generate")
       ->required();
   map_command

@@ -7,6 +7,7 @@
 #include "colmap_plugins/exe/dense_commands.h"
 #include "colmap_plugins/exe/model_commands.h"
 #include "colmap_plugins/exe/nav_commands.h"
+#include "colmap_plugins/exe/report_commands.h"
 
 int main(int argc, char** argv) {
   return uw::DispatchSubcommand(
@@ -33,6 +34,8 @@ int main(int argc, char** argv) {
            "measure a model against another model or uwsim's truth"},
           {"pose_prior_importer", uw::RunPosePriorImporter,
            "write camera pose priors from a navigation log into a database"},
+          {"survey_report", uw::RunSurveyReport,
+           "survey report folder: index.html, figures, CSVs, report.json"},
       },
       argc, argv);
 }

@@ -61,6 +61,17 @@ void Plot::ErrorBars(const std::vector<double>& x,
   Add({Kind::kErrorBars, x, low, high, colour, label});
 }
 
+void Plot::Bars(const std::vector<double>& x,
+                const std::vector<double>& heights, double width,
+                const cv::Scalar& colour, const std::string& label) {
+  std::vector<double> left, right;
+  for (const double centre : x) {
+    left.push_back(centre - 0.5 * width);
+    right.push_back(centre + 0.5 * width);
+  }
+  Add({Kind::kBars, left, heights, right, colour, label});
+}
+
 void Plot::Histogram(const std::vector<double>& values, int num_bins,
                      const cv::Scalar& colour, const std::string& label) {
   std::vector<double> finite;

@@ -33,6 +33,10 @@ class Plot {
   void ErrorBars(const std::vector<double>& x, const std::vector<double>& low,
                  const std::vector<double>& high, const cv::Scalar& colour,
                  const std::string& label = "");
+  // Bars from 0 to heights[i], centred on x[i] and `width` wide (x units).
+  void Bars(const std::vector<double>& x, const std::vector<double>& heights,
+            double width, const cv::Scalar& colour,
+            const std::string& label = "");
   // A histogram of `values` in `num_bins` bins over their range.
   void Histogram(const std::vector<double>& values, int num_bins,
                  const cv::Scalar& colour, const std::string& label = "");

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <vector>
+
 namespace uw {
 namespace {
 
@@ -42,6 +45,31 @@ TEST(Plot, HistogramBarsAreAsTallAsTheirCounts) {
   const int short_bar = height(90 + 230);
   EXPECT_GT(short_bar, 0);
   EXPECT_NEAR(static_cast<double>(tall) / short_bar, 3.0, 0.15);
+}
+
+// Bars stand on 0, as tall as their values, centred on their x and as wide
+// as asked: a gap between bars 1 apart and 0.5 wide.
+TEST(Plot, BarsAreCentredAndAsTallAsTheirValues) {
+  Plot plot("b", "x", "y", 400, 300);
+  plot.Bars({0.0, 1.0}, {2.0, 1.0}, 0.5, cv::Scalar(0, 255, 0));
+  const cv::Mat image = plot.Render();
+  const cv::Vec3b green(0, 255, 0);
+  std::vector<int> heights(image.cols, 0);
+  for (int c = 0; c < image.cols; ++c) {
+    for (int r = 0; r < image.rows; ++r) {
+      heights[c] += image.at<cv::Vec3b>(r, c) == green;
+    }
+  }
+  // x in [-0.25, 1.25] padded by 5 %: the plot's 280 px span 1.65 units.
+  const auto column = [](double x) {
+    return 90 + static_cast<int>(std::lround((x + 0.325) / 1.65 * 280));
+  };
+  EXPECT_GT(heights[column(0.0)], 0);
+  EXPECT_NEAR(static_cast<double>(heights[column(0.0)]) / heights[column(1.0)],
+              2.0, 0.05);
+  EXPECT_EQ(heights[column(0.5)], 0);
+  EXPECT_EQ(heights[column(-0.3)], 0);
+  EXPECT_GT(heights[column(-0.2)], 0);
 }
 
 }  // namespace

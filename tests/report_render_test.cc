@@ -1,0 +1,134 @@
+// uwcolmap survey_report on the reduced demo's output (the fixture
+// demo_reduced: scripts/demo.sh on the survey and laser images of the
+// fixtures), rendered by headless Chromium: the page draws, and no image is
+// missing (issue 7, the report).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <iostream>
+#include <regex>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "colmap_plugins/report/html.h"
+#include "colmap_plugins/util/file.h"
+#include "tests/support/process.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::FreshTestDir;
+using testing::Quoted;
+using testing::RunProcess;
+
+const fs::path kDemoDir = UW_DEMO_DIR;
+const fs::path kBinDir = fs::path(UW_BUILD_DIR) / "bin";
+constexpr int kWidth = 1400;
+constexpr int kHeight = 5000;
+
+// Headless Chromium as root in a container: no sandbox, no GPU, no
+// /dev/shm; the virtual time budget lets every image load before the
+// screenshot or the DOM dump.
+std::string Chromium(const std::string& action, const fs::path& page) {
+  return "timeout 180 chromium --headless --no-sandbox --disable-gpu "
+         "--disable-dev-shm-usage --hide-scrollbars --window-size=" +
+         std::to_string(kWidth) + "," + std::to_string(kHeight) +
+         " --virtual-time-budget=10000 " + action + " " +
+         Quoted("file://" + fs::absolute(page).string());
+}
+
+size_t CountImgTags(const std::string& html) {
+  size_t count = 0;
+  for (size_t at = html.find("<img"); at != std::string::npos;
+       at = html.find("<img", at + 1)) {
+    ++count;
+  }
+  return count;
+}
+
+TEST(ReportRender, DemoReportRendersWithEveryImage) {
+  if (RunProcess("command -v chromium", false).exit_code != 0) {
+    GTEST_SKIP() << "chromium is not installed (scripts/setup.sh installs "
+                    "the Debian package chromium)";
+  }
+  const fs::path& out = kDemoDir;
+  // The demo ends with both reports' paths.
+  const std::string demo_output = ReadFileToString(out.string() + ".log");
+  EXPECT_NE(demo_output.find("Survey report: " +
+                             (out / "report" / "index.html").string()),
+            std::string::npos)
+      << demo_output;
+  EXPECT_NE(demo_output.find("Laser report: "), std::string::npos);
+  EXPECT_TRUE(fs::is_regular_file(out / "report" / "index.html"));
+
+  // The command itself, every input explicit, into a folder of its own.
+  const fs::path report = FreshTestDir("uw_report_render_test") / "report";
+  const fs::path model = out / "compare" / "ours_prior_auto";
+  const fs::path chain = out / "compare" / "chain" / "ours_prior_auto";
+  const auto command = RunProcess(
+      Quoted(kBinDir / "uwcolmap") + " survey_report --input_path " +
+          Quoted(model) + " --ba_report " + Quoted(model / "ba_report.json") +
+          " --nav " + Quoted(out / "sim" / "nav.csv") + " --laser_report " +
+          Quoted(chain / "report") + " --compare_table " +
+          Quoted(out / "compare" / "table.csv") + " --dense_comparison " +
+          Quoted(chain / "compare.json") + " --mesh " +
+          Quoted(chain / "mesh.ply") + " --timings " +
+          Quoted(out / "timings.csv") + " --truth_dir " + Quoted(out / "sim") +
+          " --output_path " + Quoted(report),
+      true);
+  ASSERT_EQ(command.exit_code, 0) << command.output;
+  std::cout << command.output;
+  EXPECT_EQ(command.output.find("left out"), std::string::npos)
+      << "every input was given";
+
+  // Statically: every src is a file of the folder that decodes.
+  const fs::path index = report / "index.html";
+  const std::string html = ReadFileToString(index);
+  const std::vector<std::string> sources = ImageSources(html);
+  const size_t num_img = CountImgTags(html);
+  EXPECT_EQ(sources.size(), num_img);
+  EXPECT_GE(num_img, 5u);
+  for (const std::string& source : sources) {
+    EXPECT_FALSE(fs::path(source).is_absolute()) << source;
+    EXPECT_EQ(source.find(".."), std::string::npos) << source;
+    EXPECT_FALSE(cv::imread((report / source).string()).empty()) << source;
+  }
+  EXPECT_EQ(html.find("http://"), std::string::npos);
+  EXPECT_EQ(html.find("https://"), std::string::npos);
+  EXPECT_TRUE(fs::is_regular_file(report / "report.json"));
+
+  // In the browser: a screenshot of the page's size that is not blank.
+  const fs::path shot = report / "shot.png";
+  const auto screenshot =
+      RunProcess(Chromium("--screenshot=" + Quoted(shot), index), true);
+  ASSERT_EQ(screenshot.exit_code, 0) << screenshot.output;
+  const cv::Mat image = cv::imread(shot.string(), cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(image.empty()) << screenshot.output;
+  EXPECT_EQ(image.cols, kWidth);
+  EXPECT_EQ(image.rows, kHeight);
+  cv::Scalar mean, std_dev;
+  cv::meanStdDev(image, mean, std_dev);
+  EXPECT_GT(std_dev[0], 10.0);
+
+  // ...and every image loaded: the page's script writes loaded/total.
+  const auto dom = RunProcess(Chromium("--dump-dom", index), false);
+  ASSERT_EQ(dom.exit_code, 0);
+  std::smatch match;
+  const std::regex images_ok("data-images-ok=\"(\\d+)/(\\d+)\"");
+  ASSERT_TRUE(std::regex_search(dom.output, match, images_ok))
+      << dom.output.substr(0, 2000);
+  const size_t loaded = std::stoul(match[1].str());
+  const size_t total = std::stoul(match[2].str());
+  std::printf(
+      "[ figures ] %zu <img> in index.html, %zu/%zu loaded in Chromium; "
+      "screenshot %dx%d, pixel std-dev %.1f\n",
+      num_img, loaded, total, image.cols, image.rows, std_dev[0]);
+  EXPECT_EQ(total, num_img);
+  EXPECT_EQ(loaded, total);
+}
+
+}  // namespace
+}  // namespace uw
