@@ -32,7 +32,7 @@
 
 #include "bench/perturbed_model.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/file.h"
 
 extern char** environ;
 

@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/wall_clock.h"
-#include "colmap_plugins/util/file.h"
-#include "laserscale/laser_experiment.h"
+#include "common/util/file.h"
+#include "experiments/laser_experiment.h"
 #include "sim/generate.h"
 #include "sim/laser.h"
 #include "sim/survey.h"

@@ -15,8 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/wall_clock.h"
-#include "colmap_plugins/mesh/ray_caster.h"
-#include "colmap_plugins/util/file.h"
+#include "common/mesh/ray_caster.h"
+#include "common/util/file.h"
 #include "sim/generate.h"
 
 namespace {

@@ -14,7 +14,7 @@
 
 #include "calib/apriltag_detector.h"
 #include "calib/grey_image.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

@@ -18,7 +18,7 @@
 #include <apriltag/tagStandard52h13.h>
 
 #include "calib/grey_image.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

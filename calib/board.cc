@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "calib/corners_vnl.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

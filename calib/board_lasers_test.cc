@@ -12,7 +12,7 @@
 #include "calib/colour_spots.h"
 #include "calib/laser_line_fit.h"
 #include "calib/mission_scene_testing.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 #include "sim/laser.h"
 
 namespace uw {

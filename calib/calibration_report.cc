@@ -9,9 +9,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "calib/projection_uncertainty_plot.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
-#include "colmap_plugins/util/plot.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
+#include "common/util/plot.h"
 
 namespace uw {
 namespace {

@@ -6,9 +6,9 @@
 #include <Eigen/Geometry>
 
 #include "calib/corners_vnl.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
+#include "common/util/random.h"
 #include "sim/board_images.h"
 #include "tests/support/process.h"
 

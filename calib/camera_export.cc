@@ -2,7 +2,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

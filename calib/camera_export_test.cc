@@ -11,7 +11,7 @@ extern "C" {
 #include <mrcal/mrcal.h>
 }
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

@@ -10,7 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "calib/grey_image.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

@@ -10,8 +10,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/error.h"
+#include "common/util/random.h"
 
 namespace uw {
 namespace {

@@ -8,7 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "calib/corners_vnl.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 #include "sim/board_images.h"
 #include "tests/support/process.h"
 

@@ -5,8 +5,8 @@
 #include <map>
 #include <sstream>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 
 namespace uw {
 namespace {

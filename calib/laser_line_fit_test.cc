@@ -9,8 +9,8 @@
 #include "calib/board.h"
 #include "calib/board_pose.h"
 #include "calib/mission_scene_testing.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/error.h"
+#include "common/util/random.h"
 #include "sim/laser.h"
 
 namespace uw {

@@ -10,8 +10,8 @@
 
 #include "calib/laser_line_fit.h"
 #include "colmap_plugins/cameras/camera_models.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/error.h"
+#include "common/util/random.h"
 #include "laserscale/spot_ray.h"
 
 namespace uw {

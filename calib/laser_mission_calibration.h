@@ -17,8 +17,8 @@
 
 #include <Eigen/Core>
 
-#include "colmap_plugins/mesh/ray_caster.h"
 #include "colmap_plugins/scene/model.h"
+#include "common/mesh/ray_caster.h"
 #include "laserscale/laser_setup.h"
 
 namespace uw {

@@ -8,7 +8,7 @@
 
 #include "calib/mission_scene_testing.h"
 #include "calib/same_model_check.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 #include "sim/laser.h"
 
 namespace uw {

@@ -6,7 +6,7 @@
 #include <Eigen/Geometry>
 
 #include "colmap_plugins/cameras/camera_models.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/random.h"
 
 namespace uw::testing_mission {
 namespace {

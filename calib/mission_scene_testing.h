@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "calib/laser_mission_calibration.h"
-#include "colmap_plugins/mesh/mesh.h"
-#include "colmap_plugins/mesh/ray_caster.h"
+#include "common/mesh/mesh.h"
+#include "common/mesh/ray_caster.h"
 #include "laserscale/laser_poses_io.h"
 #include "laserscale/laser_setup.h"
 

@@ -21,8 +21,8 @@ extern "C" {
 #include <mrcal/mrcal-internal.h>
 }
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 
 namespace uw {
 namespace {

@@ -17,9 +17,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "calib/chessboard_detector.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
+#include "common/util/random.h"
 #include "sim/board_images.h"
 #include "tests/support/process.h"
 

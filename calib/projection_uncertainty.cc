@@ -9,7 +9,7 @@ extern "C" {
 #include <mrcal/poseutils.h>
 }
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

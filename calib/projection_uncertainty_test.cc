@@ -13,9 +13,9 @@
 
 #include "calib/chessboard_detector.h"
 #include "calib/corners_vnl.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
+#include "common/util/random.h"
 #include "tests/support/process.h"
 
 namespace uw {

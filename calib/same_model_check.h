@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "colmap_plugins/mesh/ray_caster.h"
+#include "common/mesh/ray_caster.h"
 #include "laserscale/laser_poses_io.h"
 
 namespace uw {

@@ -9,6 +9,16 @@ function(uw_add_library)
   target_link_libraries(uw_${ARG_NAME} PUBLIC ${ARG_DEPS})
 endfunction()
 
+# uw_add_test_library(NAME calibration_testing SRCS x_testing.cc DEPS ...)
+# A library only tests link: fixtures that may use the simulator (sim/,
+# experiments/) and GoogleTest. Its files are named *_testing.{h,cc} or live
+# in tests/support/, which scripts/check_layering.py treats as test code.
+function(uw_add_test_library)
+  cmake_parse_arguments(ARG "" "NAME" "SRCS;DEPS" ${ARGN})
+  uw_add_library(NAME ${ARG_NAME} SRCS ${ARG_SRCS} DEPS ${ARG_DEPS})
+  set_target_properties(uw_${ARG_NAME} PROPERTIES UW_TEST_ONLY TRUE)
+endfunction()
+
 # uw_add_header_library(NAME cameras DEPS Eigen3::Eigen)
 function(uw_add_header_library)
   cmake_parse_arguments(ARG "" "NAME" "DEPS" ${ARGN})

@@ -6,9 +6,9 @@
 #include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
-#include "colmap_plugins/util/json_fields.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
+#include "common/util/json_fields.h"
 
 namespace uw {
 namespace {

@@ -4,7 +4,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

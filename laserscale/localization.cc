@@ -12,7 +12,7 @@
 #include <opencv2/core/eigen.hpp>
 
 #include "colmap_plugins/cameras/camera_models.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

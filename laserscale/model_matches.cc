@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <set>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 

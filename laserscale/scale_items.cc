@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "colmap_plugins/cameras/camera_models.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 #include "laserscale/scale_estimators.h"
 #include "laserscale/spot_ray.h"
 

@@ -10,8 +10,8 @@
 #include <tbb/task_arena.h>
 #include <Eigen/Eigenvalues>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/error.h"
+#include "common/util/random.h"
 
 namespace uw {
 namespace {

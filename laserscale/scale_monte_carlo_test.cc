@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "colmap_plugins/mesh/test_meshes.h"
-#include "laserscale/laser_experiment.h"
+#include "common/mesh/test_meshes.h"
+#include "experiments/laser_experiment.h"
 #include "sim/laser.h"
 
 #include "sim/generate.h"

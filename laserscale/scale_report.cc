@@ -7,10 +7,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
-#include "colmap_plugins/util/json_fields.h"
-#include "colmap_plugins/util/plot.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
+#include "common/util/json_fields.h"
+#include "common/util/plot.h"
 
 namespace uw {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/error.h"
+#include "common/util/random.h"
 
 namespace uw {
 namespace {

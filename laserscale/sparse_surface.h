@@ -8,8 +8,8 @@
 // and overhangs need a real mesh.
 #pragma once
 
-#include "colmap_plugins/mesh/mesh.h"
 #include "colmap_plugins/scene/model.h"
+#include "common/mesh/mesh.h"
 
 namespace uw {
 

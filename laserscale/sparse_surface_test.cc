@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include "colmap_plugins/mesh/ray_caster.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/random.h"
+#include "common/mesh/ray_caster.h"
+#include "common/util/error.h"
+#include "common/util/random.h"
 
 namespace uw {
 namespace {

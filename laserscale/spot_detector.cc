@@ -16,8 +16,8 @@
 #include <opencv2/video/tracking.hpp>
 
 #include "colmap_plugins/cameras/camera_models.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/error.h"
+#include "common/util/random.h"
 
 namespace uw {
 namespace {

@@ -9,9 +9,9 @@
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
 
-#include "colmap_plugins/mesh/test_meshes.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/random.h"
+#include "common/mesh/test_meshes.h"
+#include "common/util/error.h"
+#include "common/util/random.h"
 #include "sim/laser.h"
 #include "sim/procedural_texture.h"
 #include "sim/renderer.h"

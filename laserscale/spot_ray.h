@@ -9,8 +9,8 @@
 
 #include <Eigen/Core>
 
-#include "colmap_plugins/mesh/ray_caster.h"
 #include "colmap_plugins/scene/model.h"
+#include "common/mesh/ray_caster.h"
 
 namespace uw {
 

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "colmap_plugins/mesh/test_meshes.h"
+#include "common/mesh/test_meshes.h"
 #include "laserscale/scale_estimators.h"
 #include "sim/laser.h"
 

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

@@ -6,8 +6,8 @@
 #include <Eigen/Geometry>
 
 #include "colmap_plugins/cameras/camera_models.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/error.h"
+#include "common/util/random.h"
 
 namespace uw::sim {
 namespace {

@@ -5,12 +5,12 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/mesh/mesh.h"
+#include "common/mesh/ray_caster.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 #include "laserscale/laser_setup.h"
 #include "sim/laser_images.h"
-#include "colmap_plugins/mesh/mesh.h"
-#include "colmap_plugins/mesh/ray_caster.h"
 #include "sim/rig.h"
 
 namespace uw::sim {

@@ -30,8 +30,8 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "colmap_plugins/scene/model.h"
+#include "common/mesh/ray_caster.h"
 #include "laserscale/laser_setup.h"
-#include "colmap_plugins/mesh/ray_caster.h"
 
 namespace uw::sim {
 

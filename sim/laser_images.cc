@@ -5,8 +5,8 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "colmap_plugins/util/json_fields.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/json_fields.h"
+#include "common/util/random.h"
 #include "sim/rig.h"
 
 namespace uw::sim {

@@ -10,9 +10,9 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "colmap_plugins/scene/model.h"
+#include "common/mesh/ray_caster.h"
 #include "laserscale/laser_setup.h"
 #include "sim/laser.h"
-#include "colmap_plugins/mesh/ray_caster.h"
 #include "sim/survey.h"
 
 namespace uw::sim {

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "colmap_plugins/util/file.h"
+#include "common/util/file.h"
 #include "sim/generate.h"
 #include "sim/test_sim_config.h"
 

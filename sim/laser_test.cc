@@ -6,8 +6,8 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/mesh/test_meshes.h"
+#include "common/mesh/test_meshes.h"
+#include "common/util/error.h"
 
 namespace uw::sim {
 namespace {

@@ -5,8 +5,8 @@
 #include <random>
 #include <sstream>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/json_fields.h"
+#include "common/util/error.h"
+#include "common/util/json_fields.h"
 
 namespace uw::sim {
 namespace {

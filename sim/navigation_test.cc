@@ -4,7 +4,7 @@
 
 #include <sstream>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw::sim {
 namespace {

@@ -6,11 +6,11 @@
 
 #include <tbb/parallel_for.h>
 
-#include "colmap_plugins/mesh/ray_caster.h"
-#include "colmap_plugins/mesh/visibility.h"
+#include "colmap_plugins/align/visibility.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/random.h"
+#include "common/mesh/ray_caster.h"
+#include "common/util/error.h"
+#include "common/util/random.h"
 
 namespace uw::sim {
 namespace {

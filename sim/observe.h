@@ -12,7 +12,7 @@
 
 #include "colmap_plugins/align/sim3.h"
 #include "colmap_plugins/scene/model.h"
-#include "colmap_plugins/mesh/mesh.h"
+#include "common/mesh/mesh.h"
 
 namespace uw::sim {
 

@@ -10,10 +10,10 @@
 #include <gtest/gtest.h>
 
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/mesh/test_meshes.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 #include "sim/generate.h"
-#include "colmap_plugins/mesh/test_meshes.h"
 #include "sim/test_sim_config.h"
 
 namespace uw::sim {

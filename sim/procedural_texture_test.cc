@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw::sim {
 namespace {

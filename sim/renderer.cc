@@ -12,9 +12,9 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/json_fields.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/error.h"
+#include "common/util/json_fields.h"
+#include "common/util/random.h"
 
 namespace uw::sim {
 namespace {

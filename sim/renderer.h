@@ -28,8 +28,8 @@
 #include <opencv2/core.hpp>
 
 #include "colmap_plugins/scene/model.h"
+#include "common/mesh/ray_caster.h"
 #include "sim/laser.h"
-#include "colmap_plugins/mesh/ray_caster.h"
 #include "sim/texture.h"
 
 namespace uw::sim {

@@ -14,8 +14,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/mesh/test_meshes.h"
+#include "common/mesh/test_meshes.h"
+#include "common/util/error.h"
 
 namespace uw::sim {
 namespace {

@@ -5,9 +5,9 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/json_fields.h"
-#include "colmap_plugins/util/random.h"
+#include "common/util/error.h"
+#include "common/util/json_fields.h"
+#include "common/util/random.h"
 
 namespace uw::sim {
 namespace {

@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 #include "sim/generate.h"
 #include "sim/test_sim_config.h"
 

@@ -10,9 +10,9 @@
 #include <Eigen/Geometry>
 
 #include "colmap_plugins/nav/camera_mount.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/json_fields.h"
-#include "colmap_plugins/mesh/ray_caster.h"
+#include "common/mesh/ray_caster.h"
+#include "common/util/error.h"
+#include "common/util/json_fields.h"
 #include "sim/world.h"
 
 namespace uw::sim {

@@ -8,8 +8,8 @@
 
 #include "colmap_plugins/nav/nav_csv.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 
 namespace uw::sim {
 namespace fs = std::filesystem;

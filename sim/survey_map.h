@@ -1,12 +1,12 @@
 // uwsim map: a top view of a survey for the docs. The world's true mesh,
 // the true camera centres coloured by dive, the true vehicle track and the
 // navigation track, drawn by the survey report's DrawSurveyMap
-// (colmap_plugins/report/survey_map.h) from an uwsim output folder.
+// (report/survey_map.h) from an uwsim output folder.
 #pragma once
 
 #include <filesystem>
 
-#include "colmap_plugins/report/survey_map.h"
+#include "report/survey_map.h"
 
 namespace uw::sim {
 

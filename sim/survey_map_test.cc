@@ -8,10 +8,10 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/mesh/test_meshes.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 #include "sim/navigation.h"
-#include "colmap_plugins/mesh/test_meshes.h"
 
 namespace uw::sim {
 namespace {

@@ -7,9 +7,9 @@
 #include <set>
 #include <sstream>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/mesh/ray_caster.h"
-#include "colmap_plugins/mesh/test_meshes.h"
+#include "common/mesh/ray_caster.h"
+#include "common/mesh/test_meshes.h"
+#include "common/util/error.h"
 #include "sim/world.h"
 
 namespace uw::sim {

@@ -7,8 +7,8 @@
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 #include "sim/generate.h"
 #include "sim/observe.h"
 #include "sim/survey_map.h"

@@ -22,7 +22,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json_fwd.hpp>
 
-#include "colmap_plugins/mesh/mesh.h"
+#include "common/mesh/mesh.h"
 #include "sim/procedural_texture.h"
 #include "sim/texture.h"
 

@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw::sim {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "colmap_plugins/scene/database.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/file.h"
 #include "tests/support/process.h"
 
 namespace uw {

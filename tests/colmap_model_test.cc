@@ -11,8 +11,8 @@
 
 #include "colmap_plugins/scene/model_io.h"
 #include "colmap_plugins/scene/model_stats.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 #include "tests/support/process.h"
 
 namespace uw {

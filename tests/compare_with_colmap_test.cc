@@ -21,7 +21,7 @@
 #include "colmap_plugins/align/model_comparison.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "colmap_plugins/scene/model_stats.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/file.h"
 #include "tests/support/process.h"
 
 namespace uw {

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "colmap_plugins/util/file.h"
+#include "common/util/file.h"
 #include "tests/support/process.h"
 
 namespace uw {

@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/align/similarity.h"
-#include "colmap_plugins/mesh/mesh.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/file.h"
+#include "common/mesh/mesh.h"
+#include "common/util/file.h"
 #include "laserscale/laser_poses_io.h"
 #include "laserscale/spots_io.h"
 #include "tests/support/process.h"

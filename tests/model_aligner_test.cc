@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/file.h"
 #include "tests/support/process.h"
 
 namespace uw {

@@ -16,7 +16,7 @@
 
 #include "colmap_plugins/scene/model.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/file.h"
 #include "tests/support/process.h"
 
 namespace uw {

@@ -12,8 +12,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "colmap_plugins/report/html.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/file.h"
+#include "report/html.h"
 #include "tests/support/process.h"
 
 namespace uw {

@@ -17,7 +17,7 @@
 #include "calib/mission_scene_testing.h"
 #include "calib/mrcal_calibration.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/file.h"
 #include "laserscale/spots_io.h"
 #include "sim/laser.h"
 #include "tests/support/process.h"

@@ -12,9 +12,9 @@
 #include "calib/exe/commands.h"
 #include "calib/mrcal_calibration.h"
 #include "calib/projection_uncertainty.h"
-#include "colmap_plugins/exe/command.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/cli/command.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 
 namespace uw {
 namespace {

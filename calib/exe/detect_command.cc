@@ -10,9 +10,9 @@
 #include "calib/board_detection.h"
 #include "calib/corners_vnl.h"
 #include "calib/exe/commands.h"
-#include "colmap_plugins/exe/command.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/cli/command.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 
 namespace uw {
 

@@ -5,10 +5,10 @@
 #include "calib/camera_export.h"
 #include "calib/exe/commands.h"
 #include "calib/mrcal_calibration.h"
-#include "colmap_plugins/exe/command.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/cli/command.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 
 namespace uw {
 

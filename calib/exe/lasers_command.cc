@@ -13,9 +13,9 @@
 #include "calib/exe/commands.h"
 #include "calib/laser_line_fit.h"
 #include "calib/mrcal_calibration.h"
-#include "colmap_plugins/exe/command.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/cli/command.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 #include "laserscale/laser_setup.h"
 
 namespace uw {

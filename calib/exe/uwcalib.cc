@@ -1,7 +1,7 @@
 // uwcalib: mrcal-style camera calibration sessions. Like `colmap`, the
 // first argument names the command and the rest are its flags.
 #include "calib/exe/commands.h"
-#include "colmap_plugins/exe/command.h"
+#include "common/cli/command.h"
 
 int main(int argc, char** argv) {
   return uw::DispatchSubcommand(

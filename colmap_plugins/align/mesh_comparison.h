@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/align/sim3.h"
-#include "colmap_plugins/mesh/mesh.h"
 #include "colmap_plugins/scene/model.h"
+#include "common/mesh/mesh.h"
 
 namespace uw {
 

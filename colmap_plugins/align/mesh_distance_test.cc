@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

@@ -6,8 +6,8 @@
 
 #include <Eigen/Geometry>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/json_fields.h"
+#include "common/util/error.h"
+#include "common/util/json_fields.h"
 
 namespace uw {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "colmap_plugins/align/sim3.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 #include "tests/support/process.h"
 
 namespace uw {

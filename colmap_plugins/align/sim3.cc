@@ -1,6 +1,6 @@
 #include "colmap_plugins/align/sim3.h"
 
-#include "colmap_plugins/util/json_fields.h"
+#include "common/util/json_fields.h"
 
 namespace uw {
 

@@ -10,7 +10,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/error_testing.h"
+#include "common/util/error.h"
+#include "common/util/error_testing.h"
 
 namespace uw {
 namespace {

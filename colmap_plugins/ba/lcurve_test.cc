@@ -8,7 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "colmap_plugins/ba/test_scene.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

@@ -16,7 +16,7 @@
 #include "colmap_plugins/ba/reprojection_error.h"
 #include "colmap_plugins/ba/rig_prior.h"
 #include "colmap_plugins/cameras/camera_models.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 

@@ -5,7 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

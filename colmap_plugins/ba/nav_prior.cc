@@ -3,7 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 

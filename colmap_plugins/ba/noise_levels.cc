@@ -7,7 +7,7 @@
 #include <Eigen/Cholesky>
 
 #include "colmap_plugins/ba/prior_alignment.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 

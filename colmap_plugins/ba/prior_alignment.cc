@@ -1,7 +1,7 @@
 #include "colmap_plugins/ba/prior_alignment.h"
 
 #include "colmap_plugins/align/similarity.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 

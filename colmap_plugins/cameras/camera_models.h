@@ -34,7 +34,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 

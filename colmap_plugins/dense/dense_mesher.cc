@@ -11,7 +11,7 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 

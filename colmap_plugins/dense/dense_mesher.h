@@ -17,8 +17,8 @@
 #include "colmap_plugins/dense/poisson_surface.h"
 #include "colmap_plugins/dense/surface_trimming.h"
 #include "colmap_plugins/dense/view_selection.h"
-#include "colmap_plugins/mesh/mesh.h"
 #include "colmap_plugins/scene/model.h"
+#include "common/mesh/mesh.h"
 
 namespace uw {
 

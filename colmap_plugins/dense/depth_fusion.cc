@@ -6,7 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 

@@ -10,8 +10,8 @@
 
 #include <tbb/task_arena.h>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/error_testing.h"
+#include "common/util/error.h"
+#include "common/util/error_testing.h"
 
 namespace uw {
 namespace {

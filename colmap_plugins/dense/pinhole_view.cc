@@ -4,7 +4,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 

@@ -9,8 +9,8 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/error_testing.h"
+#include "common/util/error.h"
+#include "common/util/error_testing.h"
 
 namespace uw {
 namespace {

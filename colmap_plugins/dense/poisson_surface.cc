@@ -4,9 +4,9 @@
 
 #include <Eigen/Geometry>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
-#include "colmap_plugins/util/subprocess.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
+#include "common/util/subprocess.h"
 
 namespace uw {
 

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "colmap_plugins/dense/depth_fusion.h"
-#include "colmap_plugins/mesh/mesh.h"
+#include "common/mesh/mesh.h"
 
 namespace uw {
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/error_testing.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/error.h"
+#include "common/util/error_testing.h"
+#include "common/util/file.h"
 
 namespace uw {
 namespace {

@@ -6,7 +6,7 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 

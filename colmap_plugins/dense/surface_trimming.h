@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-#include "colmap_plugins/mesh/mesh.h"
+#include "common/mesh/mesh.h"
 
 namespace uw {
 

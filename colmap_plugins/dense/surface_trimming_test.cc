@@ -9,9 +9,9 @@
 #include <tuple>
 #include <vector>
 
-#include "colmap_plugins/mesh/test_meshes.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/error_testing.h"
+#include "common/mesh/test_meshes.h"
+#include "common/util/error.h"
+#include "common/util/error_testing.h"
 
 namespace uw {
 namespace {

@@ -5,7 +5,7 @@
 #include <map>
 #include <unordered_map>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 

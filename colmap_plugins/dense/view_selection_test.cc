@@ -8,8 +8,8 @@
 #include <limits>
 #include <string>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/error_testing.h"
+#include "common/util/error.h"
+#include "common/util/error_testing.h"
 
 namespace uw {
 namespace {

@@ -9,14 +9,14 @@
 #include "colmap_plugins/align/model_comparison.h"
 #include "colmap_plugins/align/path_association.h"
 #include "colmap_plugins/align/reference_positions.h"
-#include "colmap_plugins/exe/command.h"
-#include "colmap_plugins/exe/nav_flags.h"
-#include "colmap_plugins/mesh/mesh.h"
+#include "colmap_plugins/exe/legacy_nav_flags.h"
 #include "colmap_plugins/nav/camera_prior.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
-#include "colmap_plugins/util/json_fields.h"
+#include "common/cli/command.h"
+#include "common/mesh/mesh.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
+#include "common/util/json_fields.h"
 
 namespace uw {
 namespace {

@@ -16,13 +16,13 @@
 #include "colmap_plugins/ba/nav_inputs.h"
 #include "colmap_plugins/ba/noise_levels.h"
 #include "colmap_plugins/ba/prior_alignment.h"
-#include "colmap_plugins/exe/command.h"
-#include "colmap_plugins/exe/nav_flags.h"
+#include "colmap_plugins/exe/legacy_nav_flags.h"
 #include "colmap_plugins/nav/pose_prior_import.h"
 #include "colmap_plugins/scene/database.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/cli/command.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 
 namespace uw {
 namespace {

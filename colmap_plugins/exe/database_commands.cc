@@ -2,8 +2,8 @@
 
 #include <cstdio>
 
-#include "colmap_plugins/exe/command.h"
 #include "colmap_plugins/scene/database.h"
+#include "common/cli/command.h"
 
 namespace uw {
 

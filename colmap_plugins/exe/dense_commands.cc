@@ -5,10 +5,10 @@
 #include <string>
 
 #include "colmap_plugins/dense/dense_mesher.h"
-#include "colmap_plugins/exe/command.h"
-#include "colmap_plugins/mesh/mesh.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
+#include "common/cli/command.h"
+#include "common/mesh/mesh.h"
+#include "common/util/error.h"
 
 namespace uw {
 

@@ -2,9 +2,31 @@
 // COLMAP's commands of the same name, on our reader and writer.
 #pragma once
 
+#include <string>
+
+#include "colmap_plugins/scene/model_io.h"
+#include "common/cli/command.h"
+
 namespace uw {
 
-int RunModelConverter(int argc, char** argv);
-int RunModelAnalyzer(int argc, char** argv);
+struct ModelConverterOptions {
+  std::string input_path;
+  std::string output_path;
+  // BIN or TXT, any case (COLMAP's other export formats are refused).
+  std::string output_type;
+  // Accepted for COLMAP compatibility; only COLMAP's export formats use it.
+  bool skip_distortion = false;
+
+  ModelFormat OutputFormat() const;
+  // The output type, and an output folder that is not the input.
+  void Check() const;
+};
+Subcommand ModelConverterCommand();
+
+struct ModelAnalyzerOptions {
+  std::string path;
+  void Check() const {}
+};
+Subcommand ModelAnalyzerCommand();
 
 }  // namespace uw

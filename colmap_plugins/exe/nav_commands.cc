@@ -2,15 +2,13 @@
 
 #include <iostream>
 
-#include "colmap_plugins/exe/command.h"
 #include "colmap_plugins/exe/nav_flags.h"
-#include "colmap_plugins/nav/pose_prior_import.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {
 
-void PrintSummary(const std::string& database_path, const NavFlags& flags,
+void PrintSummary(const std::string& database_path,
                   const PosePriorImportOptions& options,
                   const PosePriorImportSummary& summary) {
   const PosePriorWriteSummary& written = summary.written;
@@ -32,7 +30,8 @@ void PrintSummary(const std::string& database_path, const NavFlags& flags,
     std::cout << "Rig: " << options.rig_config_path.string() << ", "
               << summary.num_rig_cameras << " cameras\n";
   }
-  std::cout << "Camera on the vehicle: " << flags.Describe() << "\n"
+  std::cout << "Camera on the vehicle: "
+            << DescribeNavToCamera(options.nav_to_camera) << "\n"
             << "Images with priors: " << summary.num_priors << " ("
             << summary.num_exact << " at a navigation row, "
             << summary.num_interpolated << " interpolated, "
@@ -61,10 +60,36 @@ void PrintSummary(const std::string& database_path, const NavFlags& flags,
   }
 }
 
+void AddPosePriorImporterFlags(CommandLine* cli,
+                               PosePriorImporterOptions* options) {
+  cli->Add("--database_path", &options->database_path, "COLMAP database")
+      ->required();
+  AddNavFlags(cli, &options->import, true, "--rig_config");
+  cli->Add("--coordinate_system", &options->coordinate_system,
+           "Frame of the log's x,y,z: cartesian (a local metric frame such as "
+           "East-North-Up)");
+}
+
+void RunPosePriorImporter(const PosePriorImporterOptions& options) {
+  const PosePriorImportSummary summary =
+      ImportPosePriors(options.database_path, options.import);
+  PrintSummary(options.database_path, options.import, summary);
+}
+
 }  // namespace
 
-int RunPosePriorImporter(int argc, char** argv) {
-  CLI::App app(
+void PosePriorImporterOptions::Check() const {
+  if (coordinate_system != "cartesian") {
+    throw ErrorAt("--coordinate_system ", coordinate_system,
+                  ": only cartesian logs (x,y,z in metres) are supported");
+  }
+  import.Check();
+}
+
+Subcommand PosePriorImporterCommand() {
+  return MakeSubcommand<PosePriorImporterOptions>(
+      "pose_prior_importer",
+      "write camera pose priors from a navigation log into a database",
       "Writes camera pose priors from a navigation log into a COLMAP "
       "database, in the database's own schema (3.8 to 4.x): the camera "
       "centre (vehicle position + lever arm), its covariance and the "
@@ -78,27 +103,7 @@ int RunPosePriorImporter(int argc, char** argv) {
       "  uwcolmap pose_prior_importer --database_path database.db "
       "--nav sim/nav.csv --mount down --lever_arm 0.6,0,-0.3 "
       "--boresight 0.3,-0.5,0.8",
-      "uwcolmap pose_prior_importer");
-  std::string database_path;
-  NavFlags nav;
-  std::string coordinate_system = "cartesian";
-  app.add_option("--database_path", database_path, "COLMAP database")
-      ->required();
-  nav.Add(app, true, "--rig_config");
-  app.add_option("--coordinate_system", coordinate_system,
-                 "Frame of the log's x,y,z: cartesian (a local metric frame "
-                 "such as East-North-Up)")
-      ->default_val("cartesian");
-  return RunCommand(app, argc, argv, [&] {
-    if (coordinate_system != "cartesian") {
-      throw ErrorAt("--coordinate_system ", coordinate_system,
-                    ": only cartesian logs (x,y,z in metres) are supported");
-    }
-    const PosePriorImportOptions options = nav.ToOptions();
-    const PosePriorImportSummary summary =
-        ImportPosePriors(database_path, options);
-    PrintSummary(database_path, nav, options, summary);
-  });
+      AddPosePriorImporterFlags, RunPosePriorImporter);
 }
 
 }  // namespace uw

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <string>
 
-#include "colmap_plugins/exe/command.h"
-#include "colmap_plugins/report/survey_report.h"
+#include "common/cli/command.h"
+#include "report/survey_report.h"
 
 namespace uw {
 

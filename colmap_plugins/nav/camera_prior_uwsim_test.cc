@@ -15,7 +15,7 @@
 
 #include "colmap_plugins/nav/camera_prior.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/file.h"
 #include "sim/generate.h"
 #include "sim/test_sim_config.h"
 #include "tests/support/process.h"

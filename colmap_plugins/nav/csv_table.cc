@@ -4,8 +4,8 @@
 #include <charconv>
 #include <cmath>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 
 namespace uw {
 namespace {

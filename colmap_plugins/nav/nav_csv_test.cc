@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "colmap_plugins/nav/text_file_reader_test.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

@@ -9,7 +9,7 @@
 #include "colmap_plugins/nav/image_times.h"
 #include "colmap_plugins/nav/nav_csv.h"
 #include "colmap_plugins/nav/rig_config.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

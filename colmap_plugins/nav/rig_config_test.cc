@@ -6,7 +6,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 #include "tests/support/process.h"
 
 namespace uw {

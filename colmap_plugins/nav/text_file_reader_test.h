@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 #include "tests/support/process.h"
 
 namespace uw {

@@ -12,7 +12,7 @@
 #include <set>
 #include <sstream>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

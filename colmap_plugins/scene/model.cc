@@ -1,6 +1,6 @@
 #include "colmap_plugins/scene/model.h"
 
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 
 namespace uw {
 namespace {

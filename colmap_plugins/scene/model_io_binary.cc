@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "colmap_plugins/scene/model_io.h"
 #include "colmap_plugins/scene/model_stats.h"
-#include "colmap_plugins/util/error.h"
+#include "common/util/error.h"
 
 namespace uw {
 namespace {

@@ -1,10 +1,10 @@
 #include <cstdio>
 
 #include "colmap_plugins/align/sim3.h"
-#include "colmap_plugins/exe/command.h"
-#include "colmap_plugins/mesh/mesh.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
+#include "common/cli/command.h"
+#include "common/mesh/mesh.h"
+#include "common/util/error.h"
 #include "laserscale/exe/commands.h"
 #include "laserscale/scale_report.h"
 

@@ -7,11 +7,11 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "colmap_plugins/exe/command.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
-#include "colmap_plugins/util/plot.h"
+#include "common/cli/command.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
+#include "common/util/plot.h"
 #include "laserscale/exe/commands.h"
 #include "laserscale/laser_setup.h"
 #include "laserscale/spot_detector.h"

@@ -2,10 +2,10 @@
 #include <filesystem>
 #include <map>
 
-#include "colmap_plugins/exe/command.h"
-#include "colmap_plugins/mesh/mesh.h"
-#include "colmap_plugins/mesh/ray_caster.h"
-#include "colmap_plugins/util/error.h"
+#include "common/cli/command.h"
+#include "common/mesh/mesh.h"
+#include "common/mesh/ray_caster.h"
+#include "common/util/error.h"
 #include "laserscale/exe/commands.h"
 #include "laserscale/laser_poses_io.h"
 #include "laserscale/laser_setup.h"

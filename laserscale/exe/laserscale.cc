@@ -1,7 +1,7 @@
 // laserscale: the metric scale of a COLMAP model, with its confidence
 // interval, from laser-scaler images. Like `colmap`, the first argument
 // names the command and the rest are its flags.
-#include "colmap_plugins/exe/command.h"
+#include "common/cli/command.h"
 #include "laserscale/exe/commands.h"
 
 int main(int argc, char** argv) {

@@ -2,11 +2,11 @@
 #include <fstream>
 #include <set>
 
-#include "colmap_plugins/exe/command.h"
 #include "colmap_plugins/scene/database.h"
 #include "colmap_plugins/scene/model_io.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/cli/command.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
 #include "laserscale/exe/commands.h"
 #include "laserscale/laser_poses_io.h"
 #include "laserscale/model_matches.h"

@@ -1,11 +1,11 @@
 #include <cstdio>
 #include <sstream>
 
-#include "colmap_plugins/exe/command.h"
-#include "colmap_plugins/util/error.h"
-#include "colmap_plugins/util/file.h"
+#include "common/cli/command.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
+#include "experiments/laser_experiment.h"
 #include "laserscale/exe/commands.h"
-#include "laserscale/laser_experiment.h"
 
 namespace uw {
 namespace {

@@ -1,8 +1,8 @@
 #include <cstdio>
 
-#include "colmap_plugins/exe/command.h"
-#include "colmap_plugins/mesh/mesh.h"
 #include "colmap_plugins/scene/model_io.h"
+#include "common/cli/command.h"
+#include "common/mesh/mesh.h"
 #include "laserscale/exe/commands.h"
 #include "laserscale/sparse_surface.h"
 

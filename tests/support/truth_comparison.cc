@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "colmap_plugins/util/file.h"
+#include "common/util/file.h"
 #include "tests/support/process.h"
 
 namespace uw::testing {

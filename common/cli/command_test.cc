@@ -1,0 +1,146 @@
+#include "common/cli/command.h"
+
+#include <gtest/gtest.h>
+
+#include "common/util/error_testing.h"
+
+namespace uw {
+namespace {
+
+struct ExampleOptions {
+  std::string input_path;
+  int max_iterations = 100;
+  double sigma = 0.5;
+  bool refine = true;
+  Eigen::Vector3d lever_arm = Eigen::Vector3d(0.6, 0.0, -0.3);
+  std::vector<double> distances = {2.0, 3.0};
+  std::vector<std::string> names = {"A", "B"};
+  void Check() const {
+    if (max_iterations < 1) throw ErrorAt("--max_iterations must be >= 1");
+  }
+};
+
+void AddExampleFlags(CommandLine* cli, ExampleOptions* options) {
+  cli->Add("--input_path", &options->input_path, "Model")->required();
+  cli->Add("--max_iterations", &options->max_iterations, "Iterations");
+  cli->Add("--sigma", &options->sigma, "Sigma");
+  cli->Add("--refine", &options->refine, "Refine");
+  cli->Add("--lever_arm", &options->lever_arm, "Lever arm");
+  cli->Add("--distances", &options->distances, "Distances");
+  cli->Add("--names", &options->names, "Names");
+}
+
+ExampleOptions last_run;
+void RunExample(const ExampleOptions& options) { last_run = options; }
+
+Subcommand Example() {
+  return MakeSubcommand<ExampleOptions>("example", "an example",
+                                        "Example:\n  prog example",
+                                        AddExampleFlags, RunExample);
+}
+
+// "prog <command> args..." through the program's dispatcher.
+int RunCommandLine(const Subcommand& command, std::vector<std::string> args) {
+  args.insert(args.begin(), {"prog", command.name});
+  std::vector<char*> argv;
+  for (std::string& arg : args) argv.push_back(arg.data());
+  return DispatchSubcommand("prog", "usage", {command},
+                            static_cast<int>(argv.size()), argv.data());
+}
+
+TEST(CommandLine, DefaultsAreTheFieldsInitialValues) {
+  last_run = {};
+  ASSERT_EQ(RunCommandLine(Example(), {"--input_path", "m"}), 0);
+  const ExampleOptions defaults;
+  EXPECT_EQ(last_run.input_path, "m");
+  EXPECT_EQ(last_run.max_iterations, defaults.max_iterations);
+  EXPECT_EQ(last_run.sigma, defaults.sigma);
+  EXPECT_EQ(last_run.refine, defaults.refine);
+  EXPECT_EQ(last_run.lever_arm, defaults.lever_arm);
+  EXPECT_EQ(last_run.distances, defaults.distances);
+  EXPECT_EQ(last_run.names, defaults.names);
+}
+
+TEST(CommandLine, FlagsWriteTheirFields) {
+  last_run = {};
+  ASSERT_EQ(RunCommandLine(Example(),
+                           {"--input_path", "m", "--max_iterations", "7",
+                            "--sigma", "2.5", "--refine", "0", "--lever_arm",
+                            "1,-2,3", "--distances", "1.5,4", "--names", "C"}),
+            0);
+  EXPECT_EQ(last_run.max_iterations, 7);
+  EXPECT_EQ(last_run.sigma, 2.5);
+  EXPECT_FALSE(last_run.refine);
+  EXPECT_EQ(last_run.lever_arm, Eigen::Vector3d(1, -2, 3));
+  EXPECT_EQ(last_run.distances, (std::vector<double>{1.5, 4.0}));
+  EXPECT_EQ(last_run.names, std::vector<std::string>{"C"});
+}
+
+TEST(CommandLine, BadValuesExitNonZero) {
+  // CLI11's own parse errors are 2, a value our readers refuse is 1 (bad
+  // input), and so is a Check() failure.
+  EXPECT_EQ(RunCommandLine(Example(), {}), 2);
+  EXPECT_EQ(RunCommandLine(Example(),
+                           {"--input_path", "m", "--max_iterations", "1abc"}),
+            2);
+  EXPECT_EQ(RunCommandLine(Example(), {"--input_path", "m", "--refine", "yes"}),
+            1);
+  EXPECT_EQ(
+      RunCommandLine(Example(), {"--input_path", "m", "--lever_arm", "1,2"}),
+      1);
+  EXPECT_EQ(RunCommandLine(Example(),
+                           {"--input_path", "m", "--lever_arm", "1,2,nan"}),
+            1);
+  EXPECT_EQ(
+      RunCommandLine(Example(), {"--input_path", "m", "--distances", "1,x"}),
+      1);
+  EXPECT_EQ(
+      RunCommandLine(Example(), {"--input_path", "m", "--max_iterations", "0"}),
+      1);
+  EXPECT_EQ(RunCommandLine(Example(), {"--input_path", "m", "--unknown", "1"}),
+            2);
+}
+
+TEST(CommandLine, ReadersNameTheFlag) {
+  CommandLine cli("prog example", "");
+  ExampleOptions options;
+  AddExampleFlags(&cli, &options);
+  ExpectErrorContaining(
+      [&] { cli.app().parse("--input_path m --lever_arm 1,2", false); },
+      "--lever_arm: expected three numbers x,y,z, got '1,2'");
+  ExpectErrorContaining(
+      [&] { cli.app().parse("--input_path m --refine 2", false); },
+      "--refine: expected 0 or 1, got '2'");
+  ExpectErrorContaining(
+      [&] { cli.app().parse("--input_path m --distances 1,,2", false); },
+      "--distances: '' is not a number");
+}
+
+TEST(UnboundFlags, EveryFlagOfABoundCommandWritesItsOwnField) {
+  EXPECT_TRUE(UnboundFlags(Example()).empty());
+}
+
+struct LooseOptions {
+  int bound = 0;
+  int shared = 0;
+  void Check() const {}
+};
+void AddLooseFlags(CommandLine* cli, LooseOptions* options) {
+  static int outside = 0;
+  cli->Add("--bound", &options->bound, "");
+  cli->Add("--outside", &outside, "");  // not a field of the options
+  cli->app().add_option("--raw", options->bound, "");  // not bound at all
+  cli->Add("--shared", &options->shared, "");
+  cli->Add("--shared_again", &options->shared, "");  // the same field
+}
+void RunLoose(const LooseOptions&) {}
+
+TEST(UnboundFlags, NamesFlagsOutsideTheOptionsUnboundOrShared) {
+  const Subcommand loose =
+      MakeSubcommand<LooseOptions>("loose", "", "", AddLooseFlags, RunLoose);
+  EXPECT_EQ(UnboundFlags(loose),
+            (std::vector<std::string>{"--outside", "--raw", "--shared_again"}));
+}
+
+}  // namespace
+}  // namespace uw

@@ -1,0 +1,97 @@
+// The flags of one command, each bound to a field of the command's options
+// struct (COLMAP's OptionManager habit, on CLI11): the field's value before
+// parsing is the flag's default and what --help shows, so a default is
+// written once, in the options header; parsing writes the field. Bindings()
+// tells which field every flag writes, so that a test can fail on a flag
+// that writes none (UnboundFlags in common/cli/command.h).
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <Eigen/Core>
+
+namespace uw {
+
+class CommandLine {
+ public:
+  // `name` as the user types it ("uwcolmap bundle_adjuster"); `description`
+  // is --help's text, ending with an example.
+  CommandLine(const std::string& name, const std::string& description);
+
+  CommandLine(const CommandLine&) = delete;
+  CommandLine& operator=(const CommandLine&) = delete;
+
+  // Numbers, strings and paths, parsed by CLI11 (a number must be all
+  // number: "1abc" is refused).
+  template <typename T>
+  CLI::Option* Add(const std::string& flag, T* field, const std::string& help) {
+    CLI::Option* option = app_.add_option(flag, *field, help);
+    option->capture_default_str();
+    return Bind(option, field, sizeof(T));
+  }
+
+  // A boolean as COLMAP writes it on its command line: 0 or 1 (also false
+  // or true).
+  CLI::Option* Add(const std::string& flag, bool* field,
+                   const std::string& help);
+
+  // x,y,z: three finite numbers.
+  CLI::Option* Add(const std::string& flag, Eigen::Vector3d* field,
+                   const std::string& help);
+
+  // Comma-separated lists (CLI11 splits them): "2,3,4", "A,B".
+  CLI::Option* Add(const std::string& flag, std::vector<double>* field,
+                   const std::string& help);
+  CLI::Option* Add(const std::string& flag, std::vector<std::string>* field,
+                   const std::string& help);
+
+  // A value with its own reader and writer: an enum by name, "auto or a
+  // number". `parse` may throw uw::Error naming the flag (exit code 1, as
+  // for any bad input); `format` gives --help's default.
+  template <typename T>
+  CLI::Option* Add(const std::string& flag, T* field, const std::string& help,
+                   std::function<T(const std::string&)> parse,
+                   std::function<std::string(const T&)> format) {
+    CLI::Option* option = app_.add_option_function<std::string>(
+        flag, [field, parse](const std::string& text) { *field = parse(text); },
+        help);
+    option->default_str(format(*field));
+    return Bind(option, field, sizeof(T));
+  }
+
+  CLI::App& app() { return app_; }
+
+  // The options object the flags are meant to write (MakeSubcommand
+  // declares it); UnboundFlags refuses a flag that writes outside it.
+  void DeclareOptions(const void* object, size_t size) {
+    options_begin_ = static_cast<const char*>(object);
+    options_size_ = size;
+  }
+  bool WritesIntoOptions(const void* field, size_t size) const {
+    const char* begin = static_cast<const char*>(field);
+    return options_begin_ != nullptr && begin >= options_begin_ &&
+           begin + size <= options_begin_ + options_size_;
+  }
+
+  // Which flag writes which bytes.
+  struct Binding {
+    const CLI::Option* option;
+    const void* field;
+    size_t size;
+  };
+  const std::vector<Binding>& Bindings() const { return bindings_; }
+
+ private:
+  CLI::Option* Bind(CLI::Option* option, const void* field, size_t size);
+
+  CLI::App app_;
+  std::vector<Binding> bindings_;
+  const char* options_begin_ = nullptr;
+  size_t options_size_ = 0;
+};
+
+}  // namespace uw

@@ -1,0 +1,119 @@
+#include "report/report_inputs.h"
+
+#include <gtest/gtest.h>
+
+#include "report/test_report_inputs.h"
+#include "common/util/error.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ReportInputsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) / "report_inputs_test";
+    inputs_ = WriteTestReportInputs(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path dir_;
+  SurveyReportInputs inputs_;
+};
+
+template <typename Function>
+std::string ErrorOf(Function function) {
+  try {
+    function();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no uw::Error";
+  return "";
+}
+
+TEST_F(ReportInputsTest, ReadsWhatTheReportShows) {
+  inputs_.Check();
+  const BaReportSummary ba = ReadBaReport(inputs_.ba_report_path);
+  EXPECT_EQ(ba.weight_px_per_m, 0.4077);
+  EXPECT_EQ(ba.weighting, "likelihood");
+  EXPECT_EQ(ba.strategy, "prior");
+  ASSERT_EQ(ba.residuals.size(), 4u);
+  EXPECT_EQ(ba.residuals[3].name, "3.png");
+  EXPECT_EQ(ba.residuals[3].dive, 2);
+  EXPECT_EQ(ba.residuals[3].error_m, Eigen::Vector3d(0, 0.5, 0));
+  EXPECT_EQ(ba.residuals[3].mahalanobis, 3.5);
+  ASSERT_EQ(ba.dive_offsets.size(), 2u);
+  EXPECT_FALSE(ba.dive_offsets[0].sigma_m.has_value());
+  EXPECT_EQ(ba.dive_offsets[1].offset_m, Eigen::Vector3d(0.25, -0.5, 0));
+
+  const LaserReportSummary laser = ReadLaserReport(inputs_.laser_report_dir);
+  EXPECT_EQ(laser.scale, 1.0125);
+  EXPECT_EQ(laser.ci95_low, 1.0075);
+  EXPECT_EQ(laser.ci95_high, 1.0175);
+  EXPECT_EQ(laser.num_accepted, 2);
+  ASSERT_TRUE(laser.items.has_value());
+  EXPECT_EQ(laser.items->rows.size(), 4u);
+  EXPECT_EQ(laser.items->Field(1, "item"), "L0-L1");
+  ASSERT_TRUE(laser.segments.has_value());
+  EXPECT_EQ(laser.plots.size(), 3u);
+  ASSERT_EQ(laser.overlays.size(), 2u);
+  EXPECT_EQ(laser.overlays[0].filename(), "L0.png");
+
+  const DenseComparisonSummary dense =
+      ReadDenseComparison(inputs_.dense_comparison_path);
+  EXPECT_EQ(dense.median_distance, 0.0025);
+  EXPECT_EQ(dense.coverage, 0.95);
+  EXPECT_EQ(dense.reference_from_model_scale, 1.01);
+
+  const std::vector<StageTime> timings = ReadTimings(inputs_.timings_path);
+  ASSERT_EQ(timings.size(), 3u);
+  EXPECT_EQ(timings[0].stage, "copy the survey");
+  EXPECT_EQ(timings[2].seconds, 60.0);
+}
+
+TEST_F(ReportInputsTest, ErrorsNameTheFlagFileAndKey) {
+  SurveyReportInputs missing = inputs_;
+  missing.nav_path = dir_ / "no_nav.csv";
+  EXPECT_NE(
+      ErrorOf([&] {
+        missing.Check();
+      }).find("--nav " + (dir_ / "no_nav.csv").string() + ": no such file"),
+      std::string::npos);
+  missing = inputs_;
+  missing.model_path.clear();
+  EXPECT_NE(ErrorOf([&] { missing.Check(); }).find("--input_path"),
+            std::string::npos);
+
+  WriteTestText(inputs_.ba_report_path,
+                R"({"format": "uwmetric-ba-report", "version": 1})");
+  EXPECT_NE(ErrorOf([&] {
+              ReadBaReport(inputs_.ba_report_path);
+            }).find("ba_report.json: missing key \"weight_px_per_m\""),
+            std::string::npos);
+  WriteTestText(inputs_.dense_comparison_path,
+                R"({"format": "uwmetric-model-comparison", "version": 1})");
+  EXPECT_NE(ErrorOf([&] {
+              ReadDenseComparison(inputs_.dense_comparison_path);
+            }).find("compare.json: no dense_surface"),
+            std::string::npos);
+  WriteTestText(inputs_.laser_report_dir / "scale.json", "{\"format\": 1");
+  EXPECT_NE(ErrorOf([&] {
+              ReadLaserReport(inputs_.laser_report_dir);
+            }).find("scale.json"),
+            std::string::npos);
+  fs::remove(inputs_.laser_report_dir / "scale.json");
+  EXPECT_NE(ErrorOf([&] {
+              ReadLaserReport(inputs_.laser_report_dir);
+            }).find("scale.json: missing"),
+            std::string::npos);
+  WriteTestText(inputs_.timings_path, "stage,seconds\nx,fast\n");
+  EXPECT_NE(ErrorOf([&] {
+              ReadTimings(inputs_.timings_path);
+            }).find("timings.csv:2: seconds must be a finite number"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace uw

@@ -1,0 +1,138 @@
+#include "report/survey_report.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "report/html.h"
+#include "report/test_report_inputs.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SurveyReportTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ =
+        fs::path(::testing::TempDir()) /
+        ("survey_report_test_" +
+         std::string(
+             ::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    inputs_ = WriteTestReportInputs(dir_ / "inputs");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path dir_;
+  SurveyReportInputs inputs_;
+};
+
+// Every <img> of the page is a file of the folder that decodes.
+void ExpectImagesInFolder(const fs::path& out, size_t expected) {
+  const std::string html = ReadFileToString(out / "index.html");
+  const std::vector<std::string> sources = ImageSources(html);
+  EXPECT_EQ(sources.size(), expected);
+  for (const std::string& source : sources) {
+    EXPECT_EQ(source.find(".."), std::string::npos) << source;
+    EXPECT_FALSE(fs::path(source).is_absolute()) << source;
+    EXPECT_FALSE(cv::imread((out / source).string()).empty()) << source;
+  }
+}
+
+TEST_F(SurveyReportTest, WritesEverySectionFromEveryInput) {
+  const fs::path out = dir_ / "report";
+  const SurveyReportResult result =
+      WriteSurveyReport(inputs_, SurveyReportOptions(), out);
+  EXPECT_EQ(result.index_path, out / "index.html");
+  EXPECT_TRUE(result.omitted.empty());
+  // The map, 3 laser plots, 2 thumbnails, 2 prior plots.
+  EXPECT_EQ(result.num_images, 8u);
+  ExpectImagesInFolder(out, 8);
+  for (const std::string& name : result.files) {
+    EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
+  }
+  for (const auto& entry : fs::recursive_directory_iterator(out)) {
+    EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos)
+        << entry.path();
+  }
+  // Thumbnails link to the full overlays, which are copied.
+  const std::string html = ReadFileToString(out / "index.html");
+  EXPECT_NE(html.find("<a href=\"overlays/L0.png\"><img "
+                      "src=\"overlays/thumbs/L0.jpg\""),
+            std::string::npos);
+  EXPECT_EQ(cv::imread((out / "overlays/thumbs/L0.jpg").string()).cols, 240);
+  EXPECT_EQ(cv::imread((out / "overlays/L0.png").string()).cols, 640);
+  // The figures come from the inputs.
+  for (const char* text :
+       {"1.01250", "[1.00750, 1.01750]", "4 registered of 5 in the navigation",
+        "0.4077 px/m", "L0-L1", "2.50 mm", "95.0 %", "Total time", "60 s",
+        "colmap BA + model_aligner (camera centres)", "(+0.250, -0.500, "}) {
+    EXPECT_NE(html.find(text), std::string::npos) << text;
+  }
+  // Per laser / pair: L0 has 2 images with a scale, mean 1.02.
+  EXPECT_NE(html.find("<td>L0</td><td>2</td><td>1.02000</td>"),
+            std::string::npos);
+  const nlohmann::json report =
+      nlohmann::json::parse(ReadFileToString(out / "report.json"));
+  EXPECT_EQ(report.at("format"), "uwmetric-survey-report");
+  EXPECT_EQ(report.at("scale").at("scale").get<double>(), 1.0125);
+  EXPECT_EQ(report.at("images").at("registered").get<int>(), 4);
+  EXPECT_EQ(report.at("navigation").at("num_mahalanobis_above_95").get<int>(),
+            1);
+  EXPECT_EQ(report.at("total_time_s").get<double>(), 60.0);
+  EXPECT_EQ(report.at("dense_surface").at("coverage").get<double>(), 0.95);
+  EXPECT_EQ(report.at("num_images_in_index").get<size_t>(), 8u);
+  const std::string residuals = ReadFileToString(out / "prior_residuals.csv");
+  EXPECT_EQ(residuals.rfind("image,dive,error_x_m", 0), 0u);
+  EXPECT_NE(residuals.find("3.png,2,0.000000,0.500000,0.000000,0.500000,"
+                           "3.500000\n"),
+            std::string::npos);
+}
+
+TEST_F(SurveyReportTest, LeavesOutSectionsWithoutInputsAndSaysSo) {
+  SurveyReportInputs model_only;
+  model_only.model_path = inputs_.model_path;
+  const fs::path out = dir_ / "report";
+  const SurveyReportResult result =
+      WriteSurveyReport(model_only, SurveyReportOptions(), out);
+  EXPECT_EQ(result.num_images, 0u);
+  EXPECT_GE(result.omitted.size(), 6u);
+  const std::string html = ReadFileToString(out / "index.html");
+  for (const char* flag : {"--mesh", "--laser_report", "--ba_report",
+                           "--compare_table", "--timings"}) {
+    EXPECT_NE(html.find(flag), std::string::npos) << flag;
+  }
+  EXPECT_NE(html.find("4 registered"), std::string::npos);
+  ExpectImagesInFolder(out, 0);
+}
+
+TEST_F(SurveyReportTest, ABadInputIsNamedAndNothingIsWritten) {
+  const fs::path out = dir_ / "report";
+  WriteTestText(inputs_.compare_table_path, "method,time_s\n\"open,1\n");
+  try {
+    WriteSurveyReport(inputs_, SurveyReportOptions(), out);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("table.csv:2"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_FALSE(fs::exists(out / "index.html"));
+  inputs_.mesh_path = dir_ / "missing.ply";
+  try {
+    WriteSurveyReport(inputs_, SurveyReportOptions(), out);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("--mesh "), std::string::npos)
+        << error.what();
+  }
+  SurveyReportOptions options;
+  options.thumbnail_width_px = 0;
+  EXPECT_THROW(options.Check(), Error);
+}
+
+}  // namespace
+}  // namespace uw
