@@ -63,7 +63,8 @@ while [[ $# -gt 0 ]]; do
 done
 
 if ((setup)); then
-  bash "$root/scripts/setup.sh"
+  # Only the programs the demo runs, not the tests and benchmarks.
+  bash "$root/scripts/setup.sh" uwcolmap laserscale uwsim
 fi
 start=$SECONDS
 

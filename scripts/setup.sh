@@ -6,8 +6,12 @@
 # configures with CMake + Ninja (+ ccache) and builds. Safe to run again:
 # a second run installs nothing and rebuilds only what changed.
 #
-#   bash scripts/setup.sh            # build type RelWithDebInfo
+#   bash scripts/setup.sh            # everything: programs, tests, benchmarks
+#   bash scripts/setup.sh uwcolmap laserscale uwsim   # only these targets
 #   UW_BUILD_TYPE=Release bash scripts/setup.sh
+#
+# Targets named on the command line are built alone (scripts/demo.sh builds
+# only the programs it runs); with none, everything is built.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -62,5 +66,10 @@ mkdir -p "$build_dir"
 cmake -S "$root" -B "$build_dir" -G Ninja \
   -DCMAKE_BUILD_TYPE="${UW_BUILD_TYPE:-RelWithDebInfo}" > "$build_dir/configure.log" 2>&1 ||
   { cat "$build_dir/configure.log"; exit 1; }
-cmake --build "$build_dir" -j"$(nproc)"
+targets=()
+if (($# > 0)); then
+  targets=(--target "$@")
+  echo "[setup] building $*"
+fi
+cmake --build "$build_dir" -j"$(nproc)" "${targets[@]}"
 echo "[setup] done: binaries in $build_dir/bin"
