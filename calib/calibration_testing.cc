@@ -9,6 +9,7 @@
 #include "common/util/error.h"
 #include "common/util/file.h"
 #include "common/util/random.h"
+#include "common/util/subprocess.h"
 #include "sim/board_images.h"
 #include "tests/support/process.h"
 
@@ -78,12 +79,12 @@ std::string RunMrcalCalibrateCameras(const std::vector<RigCameraViews>& cameras,
                 options.image_height);
   std::string quoted_globs;
   for (const std::string& glob : globs) quoted_globs += " '" + glob + "'";
-  const testing::ProcessResult tool = testing::RunProcess(
-      "cd " + testing::Quoted(dir) +
-          " && /usr/bin/python3 /usr/bin/mrcal-calibrate-cameras"
-          " --corners-cache corners.vnl --outdir . " +
-          flags + quoted_globs,
-      true);
+  const ProcessResult tool =
+      RunProcess("cd " + testing::Quoted(dir) +
+                     " && /usr/bin/python3 /usr/bin/mrcal-calibrate-cameras"
+                     " --corners-cache corners.vnl --outdir . " +
+                     flags + quoted_globs,
+                 true);
   if (tool.exit_code != 0) {
     throw ErrorAt("mrcal-calibrate-cameras failed: ", tool.output);
   }

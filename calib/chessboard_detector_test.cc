@@ -9,6 +9,7 @@
 
 #include "calib/corners_vnl.h"
 #include "common/util/error.h"
+#include "common/util/subprocess.h"
 #include "sim/board_images.h"
 #include "tests/support/process.h"
 
@@ -79,7 +80,7 @@ TEST(DetectChessboard, ComparedWithMrgingham) {
     ASSERT_TRUE(cv::imwrite((dir / name).string(), shots.back().image));
     ours.push_back(DetectChessboard(shots.back().image, board, name));
   }
-  const testing::ProcessResult run = testing::RunProcess(
+  const ProcessResult run = RunProcess(
       "cd " + testing::Quoted(dir) + " && mrgingham --gridn 10 '*.png'", false);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const CornersVnl theirs = ParseCornersVnl(run.output, "mrgingham", 100);

@@ -20,6 +20,7 @@
 #include "common/util/error.h"
 #include "common/util/file.h"
 #include "common/util/random.h"
+#include "common/util/subprocess.h"
 #include "sim/board_images.h"
 #include "tests/support/process.h"
 
@@ -29,7 +30,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 using testing_calibration::Options;
 using testing_calibration::TrueCamera;
 
@@ -400,7 +400,7 @@ TEST(CameraModelFile, MrcalReadsWhatWeWriteToTheLastBit) {
     EXPECT_EQ(model.rt_cam_ref(3 + i), cam_from_rig.translation(i));
   }
   // And mrcal's Python reads it too.
-  const testing::ProcessResult python = RunProcess(
+  const ProcessResult python = RunProcess(
       "/usr/bin/python3 -c \"import mrcal,sys; "
       "m=mrcal.cameramodel(sys.argv[1]);"
       " print(m.intrinsics()[0], repr(m.intrinsics()[1][0]))\" " +

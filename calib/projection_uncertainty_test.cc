@@ -16,6 +16,7 @@
 #include "common/util/error.h"
 #include "common/util/file.h"
 #include "common/util/random.h"
+#include "common/util/subprocess.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -24,7 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 using testing_calibration::Options;
 using testing_calibration::TrueCamera;
 
@@ -102,7 +102,7 @@ std::vector<double> MrcalsUncertainty(
       false);
   testing_calibration::RunMrcalCalibrateCameras(cameras, board, options, globs,
                                                 dir);
-  const testing::ProcessResult python = RunProcess(
+  const ProcessResult python = RunProcess(
       "cd " + Quoted(dir) + " && /usr/bin/python3 uncertainty.py camera-" +
           std::to_string(camera) + ".cameramodel pixels.txt " +
           std::to_string(distance),

@@ -140,7 +140,7 @@ LaserReportSummary ReadLaserReport(const fs::path& dir) {
   for (const char* name : {"items.csv", "segments.csv"}) {
     if (!fs::is_regular_file(dir / name)) continue;
     (std::string(name) == "items.csv" ? summary.items : summary.segments) =
-        ReadCsvFile(dir / name);
+        CsvTable::Read(dir / name);
   }
   for (const char* name : {"scales.png", "histogram.png", "convergence.png"}) {
     if (fs::is_regular_file(dir / name)) summary.plots.push_back(dir / name);
@@ -185,14 +185,12 @@ DenseComparisonSummary ReadDenseComparison(const fs::path& path) {
 }
 
 std::vector<StageTime> ReadTimings(const fs::path& path) {
-  const CsvFile file = ReadCsvFile(path);
+  const CsvTable file = CsvTable::Read(path);
   std::vector<StageTime> stages;
-  for (size_t row = 0; row < file.rows.size(); ++row) {
+  for (size_t row = 0; row < file.NumRows(); ++row) {
     const std::optional<double> seconds = file.Number(row, "seconds");
-    if (!seconds) {
-      throw ErrorAt(path.string(), ":", file.lines[row], ": no seconds");
-    }
-    stages.push_back({file.Field(row, "stage"), *seconds});
+    if (!seconds) throw ErrorAt(file.Where(row), ": no seconds");
+    stages.push_back({file.Text(row, "stage"), *seconds});
   }
   return stages;
 }

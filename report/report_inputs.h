@@ -12,7 +12,7 @@
 
 #include <Eigen/Core>
 
-#include "report/csv_file.h"
+#include "common/util/csv.h"
 
 namespace uw {
 
@@ -74,8 +74,8 @@ struct LaserReportSummary {
   int num_images = 0;
   int num_accepted = 0;
   int num_iterations = 0;
-  std::optional<CsvFile> items;     // items.csv
-  std::optional<CsvFile> segments;  // segments.csv
+  std::optional<CsvTable> items;     // items.csv
+  std::optional<CsvTable> segments;  // segments.csv
   // Paths (absent ones left out) of scales.png, histogram.png,
   // convergence.png; the overlays (overlays/*.png|jpg), sorted.
   std::vector<std::filesystem::path> plots;

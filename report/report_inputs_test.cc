@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "report/test_report_inputs.h"
 #include "common/util/error.h"
+#include "report/test_report_inputs.h"
 
 namespace uw {
 namespace {
@@ -54,8 +54,8 @@ TEST_F(ReportInputsTest, ReadsWhatTheReportShows) {
   EXPECT_EQ(laser.ci95_high, 1.0175);
   EXPECT_EQ(laser.num_accepted, 2);
   ASSERT_TRUE(laser.items.has_value());
-  EXPECT_EQ(laser.items->rows.size(), 4u);
-  EXPECT_EQ(laser.items->Field(1, "item"), "L0-L1");
+  EXPECT_EQ(laser.items->NumRows(), 4u);
+  EXPECT_EQ(laser.items->Text(1, "item"), "L0-L1");
   ASSERT_TRUE(laser.segments.has_value());
   EXPECT_EQ(laser.plots.size(), 3u);
   ASSERT_EQ(laser.overlays.size(), 2u);

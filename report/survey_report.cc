@@ -17,14 +17,15 @@
 #include "colmap_plugins/align/mesh_comparison.h"
 #include "colmap_plugins/align/mesh_distance.h"
 #include "colmap_plugins/align/model_comparison.h"
-#include "common/mesh/mesh.h"
 #include "colmap_plugins/nav/nav_csv.h"
-#include "report/html.h"
-#include "report/survey_map.h"
 #include "colmap_plugins/scene/model_io.h"
+#include "common/mesh/mesh.h"
+#include "common/util/csv.h"
 #include "common/util/error.h"
 #include "common/util/file.h"
 #include "common/util/plot.h"
+#include "report/html.h"
+#include "report/survey_map.h"
 
 namespace uw {
 namespace fs = std::filesystem;
@@ -159,15 +160,15 @@ TruthFigures ReadTruth(const fs::path& truth_dir, const Reconstruction& model) {
   return figures;
 }
 
-std::string LaserItemsTable(const CsvFile& items) {
+std::string LaserItemsTable(const CsvTable& items) {
   // Per laser / pair over the images: how many images gave it a scale, the
   // mean and spread of those, and the median of the per-image intervals.
   struct Item {
     std::vector<double> nominal, low, high;
   };
   std::map<std::string, Item> by_item;
-  for (size_t row = 0; row < items.rows.size(); ++row) {
-    Item& item = by_item[items.Field(row, "item")];
+  for (size_t row = 0; row < items.NumRows(); ++row) {
+    Item& item = by_item[items.Text(row, "item")];
     const std::optional<double> nominal = items.Number(row, "nominal");
     if (!nominal) continue;
     item.nominal.push_back(*nominal);
@@ -198,18 +199,18 @@ std::string LaserItemsTable(const CsvFile& items) {
       rows);
 }
 
-std::string SegmentsTable(const CsvFile& segments) {
+std::string SegmentsTable(const CsvTable& segments) {
   std::vector<std::vector<std::string>> rows;
-  for (size_t row = 0; row < segments.rows.size(); ++row) {
+  for (size_t row = 0; row < segments.NumRows(); ++row) {
     const auto number = [&](const char* column, int decimals) {
       const std::optional<double> value = segments.Number(row, column);
       return value ? Fixed(*value, decimals) : std::string();
     };
     rows.push_back(
-        {segments.Field(row, "segment"),
+        {segments.Text(row, "segment"),
          "(" + number("x", 2) + ", " + number("y", 2) + ", " + number("z", 2) +
              ")",
-         segments.Field(row, "num_images"), number("scale", 5),
+         segments.Text(row, "num_images"), number("scale", 5),
          number("sigma", 5),
          "[" + number("ci95_low", 5) + ", " + number("ci95_high", 5) + "]",
          number("birge_ratio", 2)});
@@ -281,9 +282,9 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
   if (!inputs.dense_comparison_path.empty()) {
     dense = ReadDenseComparison(inputs.dense_comparison_path);
   }
-  std::optional<CsvFile> compare_table;
+  std::optional<CsvTable> compare_table;
   if (!inputs.compare_table_path.empty()) {
-    compare_table = ReadCsvFile(inputs.compare_table_path);
+    compare_table = CsvTable::Read(inputs.compare_table_path);
   }
   std::vector<StageTime> timings;
   if (!inputs.timings_path.empty()) timings = ReadTimings(inputs.timings_path);
@@ -389,14 +390,14 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
     }
     report["scale"] = scale_json;
     if (laser->items) {
-      files.Copy(laser->items->path, "laser/items.csv");
+      files.Copy(laser->items->Path(), "laser/items.csv");
       scale_html += "<h3>Per laser / pair</h3>\n" +
                     LaserItemsTable(*laser->items) +
                     "<p>Every image's figures: <a href=\"laser/items.csv\">"
                     "laser/items.csv</a>.</p>\n";
     }
     if (laser->segments) {
-      files.Copy(laser->segments->path, "laser/segments.csv");
+      files.Copy(laser->segments->Path(), "laser/segments.csv");
       scale_html += "<h3>Per segment along the survey</h3>\n" +
                     SegmentsTable(*laser->segments) +
                     "<p><a href=\"laser/segments.csv\">laser/segments.csv"
@@ -607,7 +608,7 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
         {"sagitta_m", "doming sagitta (m)"},
         {"time_s", "time (s)"}};
     std::vector<std::string> header;
-    for (const std::string& column : compare_table->header) {
+    for (const std::string& column : compare_table->Header()) {
       const auto found = headers.find(column);
       header.push_back(found == headers.end() ? column : found->second);
     }
@@ -618,7 +619,7 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
         "similarity\": after the best rotation, translation and scale onto "
         "the truth, which shows the shape alone. Sagitta &lt; 0 is a "
         "dome.</p>\n" +
-        HtmlTable(header, compare_table->rows) +
+        HtmlTable(header, compare_table->Rows()) +
         "<p><a href=\"compare_table.csv\">compare_table.csv</a></p>\n";
     files.Copy(inputs.compare_table_path, "compare_table.csv");
   } else {

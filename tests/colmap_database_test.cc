@@ -9,6 +9,7 @@
 #include "colmap_plugins/scene/database.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -17,7 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kSceneDir = UW_SCENE_DIR;
 const fs::path kUwcolmap = fs::path(UW_BIN_DIR) / "uwcolmap";

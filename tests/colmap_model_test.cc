@@ -13,6 +13,7 @@
 #include "colmap_plugins/scene/model_stats.h"
 #include "common/util/error.h"
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -21,7 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kSceneDir = UW_SCENE_DIR;
 const fs::path kSparseDir = kSceneDir / "sparse" / "0";

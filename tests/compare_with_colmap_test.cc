@@ -22,6 +22,7 @@
 #include "colmap_plugins/scene/model_io.h"
 #include "colmap_plugins/scene/model_stats.h"
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -30,7 +31,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kSurveyDir = UW_SURVEY_DIR;
 const fs::path kSimDir = kSurveyDir / "sim";

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -20,7 +21,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kDemoDir = UW_DEMO_DIR;
 const fs::path kSurveyDir = UW_SURVEY_DIR;

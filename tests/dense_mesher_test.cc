@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -16,7 +17,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kSurveyDir = UW_SURVEY_DIR;
 const fs::path kSimDir = kSurveyDir / "sim";

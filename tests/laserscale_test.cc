@@ -14,6 +14,7 @@
 #include "colmap_plugins/scene/model_io.h"
 #include "common/mesh/mesh.h"
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "laserscale/laser_poses_io.h"
 #include "laserscale/spots_io.h"
 #include "tests/support/process.h"
@@ -24,7 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kSurveyDir = UW_SURVEY_DIR;
 const fs::path kLaserDir = UW_LASER_DIR;

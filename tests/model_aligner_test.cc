@@ -12,6 +12,7 @@
 
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -20,14 +21,13 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kSceneDir = UW_SCENE_DIR;
 const fs::path kSparseDir = kSceneDir / "sparse" / "0";
 const fs::path kRefImages = kSceneDir / "scene" / "truth" / "ref_images.txt";
 const fs::path kUwcolmap = fs::path(UW_BIN_DIR) / "uwcolmap";
 
-testing::ProcessResult Uwcolmap(const std::string& flags) {
+ProcessResult Uwcolmap(const std::string& flags) {
   return RunProcess(kUwcolmap.string() + " model_aligner " + flags, true);
 }
 

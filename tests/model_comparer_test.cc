@@ -11,6 +11,7 @@
 
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -19,7 +20,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kSurveyDir = UW_SURVEY_DIR;
 const fs::path kSimDir = kSurveyDir / "sim";
@@ -156,7 +156,7 @@ TEST(ModelComparer, RefusesBadFlagsAndWritesNothing) {
   EXPECT_FALSE(fs::exists(dir / "compare.json"));
 }
 
-testing::ProcessResult Align(const fs::path& output, const std::string& flags) {
+ProcessResult Align(const fs::path& output, const std::string& flags) {
   return RunProcess(kUwcolmap.string() + " model_aligner --input_path " +
                         Quoted(kSparseDir) + " --output_path " +
                         Quoted(output) + flags,

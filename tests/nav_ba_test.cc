@@ -17,6 +17,7 @@
 #include "colmap_plugins/scene/model.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -25,7 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kUwsim = fs::path(UW_BIN_DIR) / "uwsim";
 const fs::path kUwcolmap = fs::path(UW_BIN_DIR) / "uwcolmap";

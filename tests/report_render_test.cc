@@ -13,6 +13,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "report/html.h"
 #include "tests/support/process.h"
 
@@ -22,7 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kDemoDir = UW_DEMO_DIR;
 const fs::path kBinDir = fs::path(UW_BUILD_DIR) / "bin";

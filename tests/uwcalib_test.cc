@@ -18,6 +18,7 @@
 #include "calib/mrcal_calibration.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "laserscale/spots_io.h"
 #include "sim/laser.h"
 #include "tests/support/process.h"
@@ -28,7 +29,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kUwcalib = fs::path(UW_BIN_DIR) / "uwcalib";
 const fs::path kImages =

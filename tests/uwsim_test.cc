@@ -8,6 +8,7 @@
 
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -16,7 +17,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kSurveyDir = UW_SURVEY_DIR;
 const fs::path kUwsim = fs::path(UW_BIN_DIR) / "uwsim";

@@ -2,7 +2,7 @@
 
 #include <unordered_map>
 
-#include "colmap_plugins/nav/csv_table.h"
+#include "common/util/csv.h"
 #include "common/util/error.h"
 
 namespace uw {

@@ -4,7 +4,7 @@
 #include <map>
 #include <unordered_map>
 
-#include "colmap_plugins/nav/csv_table.h"
+#include "common/util/csv.h"
 #include "common/util/error.h"
 
 namespace uw {

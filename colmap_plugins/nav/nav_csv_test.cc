@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "colmap_plugins/nav/text_file_reader_test.h"
 #include "common/util/error.h"
+#include "tests/support/text_file_reader_test.h"
 
 namespace uw {
 namespace {

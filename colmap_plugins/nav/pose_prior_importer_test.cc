@@ -19,6 +19,7 @@
 #include "colmap_plugins/nav/camera_prior.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "sim/generate.h"
 #include "sim/test_sim_config.h"
 #include "tests/support/process.h"
@@ -29,7 +30,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
-using testing::RunProcess;
 
 const fs::path kUwcolmap = fs::path(UW_BIN_DIR) / "uwcolmap";
 
@@ -110,8 +110,7 @@ fs::path FreshDatabase(const fs::path& dir) {
   return path;
 }
 
-testing::ProcessResult Import(const fs::path& database,
-                              const std::string& flags) {
+ProcessResult Import(const fs::path& database, const std::string& flags) {
   return RunProcess(kUwcolmap.string() +
                         " pose_prior_importer --database_path " +
                         Quoted(database) + " " + flags,

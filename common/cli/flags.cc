@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "common/util/error.h"
 
 namespace uw {
@@ -12,13 +15,14 @@ std::string FlagName(const std::string& flag) {
   return flag.substr(flag.find_first_not_of('-'));
 }
 
-template <typename T>
-std::string JoinWithCommas(const std::vector<T>& values) {
-  std::ostringstream text;
-  for (size_t k = 0; k < values.size(); ++k) {
-    text << (k > 0 ? "," : "") << values[k];
-  }
-  return text.str();
+// A list flag's value as it is typed, "1,2.5,3"; numbers as %g, the way a
+// stream prints them.
+std::string JoinNumbers(const std::vector<double>& values) {
+  return fmt::format("{:g}", fmt::join(values, ","));
+}
+
+std::string JoinTexts(const std::vector<std::string>& values) {
+  return fmt::format("{}", fmt::join(values, ","));
 }
 
 }  // namespace
@@ -65,8 +69,7 @@ CLI::Option* CommandLine::Add(const std::string& flag, Eigen::Vector3d* field,
         return value;
       },
       [](const Eigen::Vector3d& value) {
-        return JoinWithCommas(
-            std::vector<double>{value.x(), value.y(), value.z()});
+        return JoinNumbers({value.x(), value.y(), value.z()});
       });
   option->type_name("X,Y,Z");
   return option;
@@ -90,7 +93,7 @@ CLI::Option* CommandLine::Add(const std::string& flag,
         }
         return values;
       },
-      JoinWithCommas<double>);
+      JoinNumbers);
 }
 
 CLI::Option* CommandLine::Add(const std::string& flag,
@@ -99,7 +102,7 @@ CLI::Option* CommandLine::Add(const std::string& flag,
   return Add<std::vector<std::string>>(
       flag, field, help,
       [](const std::string& text) { return CLI::detail::split(text, ','); },
-      JoinWithCommas<std::string>);
+      JoinTexts);
 }
 
 }  // namespace uw

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
+#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -18,12 +18,6 @@ constexpr int kLeft = 90;
 constexpr int kRight = 30;
 constexpr int kTop = 50;
 constexpr int kBottom = 60;
-
-std::string Number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.6g", value);
-  return text;
-}
 
 }  // namespace
 
@@ -156,8 +150,9 @@ cv::Mat Plot::Render() const {
     const double y = y_lo + (y_hi - y_lo) * t / 4.0;
     cv::line(image, to_px(x, y_lo), to_px(x, y_hi), grey, 1);
     cv::line(image, to_px(x_lo, y), to_px(x_hi, y), grey, 1);
-    text(Number(x), to_px(x, y_lo) + cv::Point(-20, 18), 0.4);
-    text(Number(y), to_px(x_lo, y) + cv::Point(-kLeft + 5, 4), 0.4);
+    text(fmt::format("{:.6g}", x), to_px(x, y_lo) + cv::Point(-20, 18), 0.4);
+    text(fmt::format("{:.6g}", y), to_px(x_lo, y) + cv::Point(-kLeft + 5, 4),
+         0.4);
   }
   cv::rectangle(image, {kLeft, kTop}, {kLeft + plot_w, kTop + plot_h}, black);
   for (const Series& s : series_) {

@@ -46,5 +46,29 @@ TEST(RunProgram, MissingProgramIsAnErrorNamingIt) {
   EXPECT_THROW(RunProgram({}, TestLog("empty.log")), Error);
 }
 
+TEST(RunProcess, CapturesStdoutAndStderrOnlyWhenMerged) {
+  const ProcessResult merged =
+      RunProcess("echo out; echo err >&2; exit 2", true);
+  EXPECT_EQ(merged.exit_code, 2);
+  EXPECT_EQ(merged.output, "out\nerr\n");
+  const ProcessResult alone = RunProcess("echo out; echo err >&2", false);
+  EXPECT_EQ(alone.exit_code, 0);
+  EXPECT_EQ(alone.output, "out\n");
+}
+
+TEST(RunProcess, RunsShellCommandLines) {
+  // Pipes, `cd dir &&`, quoting, and more output than one pipe buffer.
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "uw_subprocess_test" / "a dir";
+  std::filesystem::create_directories(dir);
+  const ProcessResult result = RunProcess(
+      "cd '" + dir.string() + "' && pwd && seq 100000 | tail -n 1", false);
+  EXPECT_EQ(result.exit_code, 0);
+  EXPECT_EQ(result.output, dir.string() + "\n100000\n");
+  EXPECT_EQ(RunProcess("seq 100000", false).output.size(), 588895u);
+  EXPECT_EQ(RunProcess("kill -9 $$", true).exit_code, 128 + 9);
+  EXPECT_EQ(RunProcess("uw-no-such-program", false).exit_code, 127);
+}
+
 }  // namespace
 }  // namespace uw

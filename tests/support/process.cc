@@ -1,29 +1,8 @@
 #include "tests/support/process.h"
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
-#include <stdexcept>
-
 #include <gtest/gtest.h>
 
 namespace uw::testing {
-
-ProcessResult RunProcess(const std::string& command, bool merge_stderr) {
-  const std::string full = command + (merge_stderr ? " 2>&1" : " 2>/dev/null");
-  FILE* pipe = ::popen(full.c_str(), "r");
-  if (pipe == nullptr) throw std::runtime_error("popen failed: " + command);
-  ProcessResult result;
-  std::array<char, 4096> buffer;
-  size_t count;
-  while ((count = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-    result.output.append(buffer.data(), count);
-  }
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
 
 std::string Quoted(const std::filesystem::path& path) {
   std::string quoted = "'";

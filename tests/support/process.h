@@ -1,19 +1,12 @@
-// Running programs (stock colmap, our CLIs) from integration tests.
+// What tests that run programs need beyond common/util/subprocess.h (which
+// runs them): quoting for the shell command lines they build, and a fresh
+// directory per test for their output.
 #pragma once
 
 #include <filesystem>
 #include <string>
 
 namespace uw::testing {
-
-struct ProcessResult {
-  int exit_code = -1;
-  std::string output;  // stdout, plus stderr when requested
-};
-
-// Runs `command` through /bin/sh. With merge_stderr, stderr is captured
-// too; otherwise it is discarded so that logs do not mix into the result.
-ProcessResult RunProcess(const std::string& command, bool merge_stderr);
 
 // Quotes a path for /bin/sh.
 std::string Quoted(const std::filesystem::path& path);

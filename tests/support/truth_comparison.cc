@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "common/util/file.h"
+#include "common/util/subprocess.h"
 #include "tests/support/process.h"
 
 namespace uw::testing {
