@@ -2,14 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <iomanip>
-#include <locale>
 #include <map>
 #include <optional>
-#include <sstream>
 #include <unordered_map>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -17,14 +14,14 @@
 #include "colmap_plugins/align/mesh_comparison.h"
 #include "colmap_plugins/align/mesh_distance.h"
 #include "colmap_plugins/align/model_comparison.h"
-#include "common/mesh/mesh.h"
 #include "colmap_plugins/nav/nav_csv.h"
-#include "report/html.h"
-#include "report/survey_map.h"
 #include "colmap_plugins/scene/model_io.h"
+#include "common/mesh/mesh.h"
 #include "common/util/error.h"
 #include "common/util/file.h"
 #include "common/util/plot.h"
+#include "report/html.h"
+#include "report/survey_map.h"
 
 namespace uw {
 namespace fs = std::filesystem;
@@ -38,10 +35,7 @@ using Json = nlohmann::json;
 constexpr double kMahalanobis95 = 2.795483;
 
 std::string Fixed(double value, int decimals) {
-  std::ostringstream text;
-  text.imbue(std::locale::classic());
-  text << std::fixed << std::setprecision(decimals) << value;
-  return text.str();
+  return fmt::format("{:.{}f}", value, decimals);
 }
 
 std::string Signed(double value, int decimals) {

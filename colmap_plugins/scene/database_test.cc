@@ -1137,11 +1137,12 @@ TEST(DatabaseStats, CountsWhatTheDatabaseHolds) {
     without.position_covariance.setConstant(PosePrior::kNaN);
     db.WritePosePriors({RandomPrior(1, &random), without});
   }
+  const FeatureMatchesBlob inliers = FeatureMatchesBlob::Zero(3, 2);
   Sqlite3(made.path,
           "INSERT INTO two_view_geometries(pair_id, rows, cols, data, "
           "config) VALUES(" +
               std::to_string(ExpectedPairId(1, 2)) + ", 3, 2, X'" +
-              HexOf(FeatureMatchesBlob::Zero(3, 2)) + "', 2);",
+              HexOf(inliers) + "', 2);",
           /*read_only=*/false);
   const DatabaseStats stats = ComputeDatabaseStats(
       Database::Open(made.path, Database::Mode::kReadOnly));
