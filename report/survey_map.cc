@@ -3,12 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <iomanip>
 #include <limits>
-#include <locale>
-#include <sstream>
 #include <unordered_map>
 
+#include <fmt/format.h>
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
 
@@ -84,10 +82,7 @@ std::string FormatNumber(double value, double step) {
   const int decimals =
       std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
   if (std::abs(value) < 1e-9 * step) value = 0.0;
-  std::ostringstream text;
-  text.imbue(std::locale::classic());
-  text << std::fixed << std::setprecision(decimals) << value;
-  return text.str();
+  return fmt::format("{:.{}f}", value, decimals);
 }
 
 class Figure {
@@ -406,12 +401,10 @@ void DrawLegend(const SurveyMapData& data, const SurveyMap& map, int top,
   }
   const NavigationError error = HorizontalNavigationError(data);
   if (error.count > 0) {
-    std::ostringstream text;
-    text.imbue(std::locale::classic());
-    text << std::fixed << std::setprecision(2) << data.cameras.size()
-         << " images; navigation error (horizontal): RMS " << error.rms_m
-         << " m, max " << error.max_m << " m";
-    figure->Text(text.str(), left, row, 0.55, -1, kGreyInk);
+    figure->Text(fmt::format("{} images; navigation error (horizontal): RMS "
+                             "{:.2f} m, max {:.2f} m",
+                             data.cameras.size(), error.rms_m, error.max_m),
+                 left, row, 0.55, -1, kGreyInk);
   }
 
   // Height colour bar.

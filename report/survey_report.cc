@@ -2,14 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <iomanip>
-#include <locale>
 #include <map>
 #include <optional>
-#include <sstream>
 #include <unordered_map>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -39,10 +36,7 @@ using Json = nlohmann::json;
 constexpr double kMahalanobis95 = 2.795483;
 
 std::string Fixed(double value, int decimals) {
-  std::ostringstream text;
-  text.imbue(std::locale::classic());
-  text << std::fixed << std::setprecision(decimals) << value;
-  return text.str();
+  return fmt::format("{:.{}f}", value, decimals);
 }
 
 std::string Signed(double value, int decimals) {

@@ -27,7 +27,9 @@ LAYERS = [
     ["common"],
     ["colmap_plugins/cameras"],
     ["colmap_plugins/scene"],
-    ["colmap_plugins/nav", "colmap_plugins/align", "colmap_plugins/dense"],
+    # Alignment to navigation reads it (model_alignment), hence above nav/.
+    ["colmap_plugins/nav", "colmap_plugins/dense"],
+    ["colmap_plugins/align"],
     ["colmap_plugins/ba"],
     ["laserscale"],
     ["calib", "report"],

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include "colmap_plugins/align/mesh_distance.h"
@@ -189,6 +190,24 @@ nlohmann::json ToJson(const MeshComparison& comparison) {
           {"coverage", comparison.coverage},
           {"coverage_tolerance", comparison.coverage_tolerance},
           {"coverage_min_views", comparison.min_views}};
+}
+
+std::string FormatMeshComparison(const MeshComparison& comparison,
+                                 const std::string& mesh_path) {
+  return fmt::format(
+      "Dense surface: {} (after the alignment)\n"
+      "  camera-scene distance (median along the optical axes): {:.6g} m\n"
+      "  distance to the reference surface over {} samples: median {:.6g} m "
+      "({:.3f} % of the camera-scene distance), 90 % {:.6g} m, RMS {:.6g} m, "
+      "signed mean {:.6g} m\n"
+      "  coverage: {:.2f} % of the {:.6g} m^2 seen by >= {} reference images "
+      "lie within {:.4g} m of the dense surface\n",
+      mesh_path, comparison.camera_scene_distance, comparison.num_samples,
+      comparison.median,
+      100.0 * comparison.median / comparison.camera_scene_distance,
+      comparison.p90, comparison.rms, comparison.mean_signed,
+      100.0 * comparison.coverage, comparison.observed_area,
+      comparison.min_views, comparison.coverage_tolerance);
 }
 
 }  // namespace uw

@@ -61,4 +61,8 @@ TriangleMesh TransformMesh(const Sim3d& b_from_a, TriangleMesh mesh);
 
 nlohmann::json ToJson(const MeshComparison& comparison);
 
+// What model_comparer prints about the dense mesh read from `mesh_path`.
+std::string FormatMeshComparison(const MeshComparison& comparison,
+                                 const std::string& mesh_path);
+
 }  // namespace uw

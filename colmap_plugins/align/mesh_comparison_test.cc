@@ -306,6 +306,28 @@ TEST(CompareMeshes, ToJsonReportsEveryField) {
   EXPECT_EQ(json.at("num_samples").get<size_t>(), 20000u);
 }
 
+TEST(FormatMeshComparison, PrintsTheFiguresOfTheDenseSurface) {
+  MeshComparison comparison;
+  comparison.camera_scene_distance = 2.2;
+  comparison.num_samples = 200000;
+  comparison.median = 0.0024;
+  comparison.p90 = 0.006;
+  comparison.rms = 0.004;
+  comparison.mean_signed = -0.0005;
+  comparison.observed_area = 30.5;
+  comparison.coverage = 0.94;
+  comparison.coverage_tolerance = 0.022;
+  comparison.min_views = 2;
+  EXPECT_EQ(FormatMeshComparison(comparison, "mesh.ply"),
+            "Dense surface: mesh.ply (after the alignment)\n"
+            "  camera-scene distance (median along the optical axes): 2.2 m\n"
+            "  distance to the reference surface over 200000 samples: median "
+            "0.0024 m (0.109 % of the camera-scene distance), 90 % 0.006 m, "
+            "RMS 0.004 m, signed mean -0.0005 m\n"
+            "  coverage: 94.00 % of the 30.5 m^2 seen by >= 2 reference "
+            "images lie within 0.022 m of the dense surface\n");
+}
+
 TEST(CompareMeshes, InvalidInputsThrow) {
   const TriangleMesh seafloor = Seafloor();
   ExpectErrorContaining(

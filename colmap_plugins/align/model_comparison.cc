@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include <fmt/format.h>
 #include <Eigen/Geometry>
 
 #include "common/util/error.h"
@@ -295,6 +296,90 @@ nlohmann::json ToJson(const ModelComparison& comparison) {
     json["surface"] = nullptr;
   }
   return json;
+}
+
+std::string FormatModelComparison(const ModelComparison& comparison,
+                                  const std::string& surface_path,
+                                  const ModelComparisonOptions& options) {
+  std::string text = fmt::format(
+      "Images: model {}, reference {}, common {} (reference images "
+      "missing from the model: {}{}{})\n",
+      comparison.num_model_images, comparison.num_reference_images,
+      comparison.cameras.size(), comparison.missing_images.size(),
+      comparison.missing_images.empty() ? "" : ", e.g. ",
+      comparison.missing_images.empty() ? ""
+                                        : comparison.missing_images.front());
+  if (comparison.aligned) {
+    text += fmt::format(
+        "Alignment reference_from_model ({}{}): scale {:.8g}, {} of {} "
+        "inliers\n",
+        options.alignment.estimate_scale ? "similarity, " : "rigid, ",
+        options.alignment.robust ? "robust" : "least squares",
+        comparison.alignment.b_from_a.scale, comparison.alignment.num_inliers,
+        comparison.cameras.size());
+  } else {
+    text += "Alignment: none (the model is compared where it is)\n";
+  }
+  text += fmt::format(
+      "Camera centres: RMSE {:.6g} m = {:.4f} % of the {:.4g} m extent, max "
+      "{:.6g} m\n",
+      comparison.camera_rmse_m,
+      100.0 * comparison.camera_rmse_m / comparison.reference_extent_m,
+      comparison.reference_extent_m, comparison.camera_max_error_m);
+  text +=
+      fmt::format("Camera rotations: RMS {:.6g} deg, max {:.6g} deg\n",
+                  comparison.rotation_rmse_deg, comparison.rotation_max_deg);
+  text +=
+      fmt::format("Track: {:.6g} m along ({:.4f}, {:.4f}, {:.4f})\n",
+                  comparison.axis.length, comparison.axis.direction.x(),
+                  comparison.axis.direction.y(), comparison.axis.direction.z());
+  text += fmt::format("{:<8} {:>10} {:>10} {:>7} {:>10} {:>12} {:>10}\n",
+                      "segment", "from_m", "to_m", "images", "scale_3d",
+                      "scale_along", "tilt_deg");
+  for (size_t s = 0; s < comparison.segments.size(); ++s) {
+    const SegmentScale& segment = comparison.segments[s];
+    text +=
+        fmt::format("{:<8} {:10.3f} {:10.3f} {:7} {:10.5f} {:12.5f} {:10.3f}\n",
+                    static_cast<char>('A' + s), segment.begin, segment.end,
+                    segment.num_images, segment.scale_3d,
+                    segment.scale_along_track, segment.view_tilt_deg);
+  }
+  const DistanceRatios& ratios = comparison.distance_ratios;
+  text += fmt::format(
+      "Camera distance ratios model/reference ({} pairs): median {:.6g}, max "
+      "|r-1| {:.4g}, 95 % |r-1| {:.4g}\n",
+      ratios.num_pairs, ratios.median_ratio, ratios.max_abs_deviation,
+      ratios.p95_abs_deviation);
+  if (!comparison.surface) return text;
+  const SurfaceDeviation& surface = *comparison.surface;
+  text += fmt::format(
+      "Surface {}: {} of {} points (error <= {:g} px), signed distance "
+      "(+ towards the cameras): RMS {:.6g} m, mean {:.6g} m, median {:.6g} m, "
+      "median |d| {:.6g} m, 95 % |d| {:.6g} m, max |d| {:.6g} m\n",
+      surface_path, surface.num_points_used, surface.num_points,
+      options.max_reprojection_error_px, surface.rms_m, surface.mean_m,
+      surface.median_m, surface.median_abs_m, surface.p95_abs_m,
+      surface.max_abs_m);
+  text += fmt::format("{:<8} {:>10} {:>10} {:>8} {:>12}\n", "bin", "from_m",
+                      "to_m", "points", "median_m");
+  for (size_t b = 0; b < surface.bins.size(); ++b) {
+    const DeviationBin& bin = surface.bins[b];
+    text += fmt::format("{:<8} {:10.3f} {:10.3f} {:8} {:12.6f}\n", b + 1,
+                        bin.begin, bin.end, bin.count, bin.median_m);
+  }
+  if (surface.dome.valid) {
+    text += fmt::format(
+        "Dome fit d(x) = {:.4g} + {:.4g} x + {:.4g} x^2: sagitta {:.6g} m = "
+        "{:.4f} % of the track (negative: the middle stands out towards the "
+        "cameras)\n",
+        surface.dome.coefficients[0], surface.dome.coefficients[1],
+        surface.dome.coefficients[2], surface.dome.sagitta_m,
+        surface.dome.sagitta_percent);
+  } else {
+    text += fmt::format("Dome fit: fewer than 3 bins with {} points\n",
+                        options.min_points_per_bin);
+  }
+  return text;
 }
 
 }  // namespace uw

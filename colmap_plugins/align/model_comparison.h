@@ -116,4 +116,11 @@ ModelComparison CompareModels(const Reconstruction& model,
 // compare.json (docs/formats.md).
 nlohmann::json ToJson(const ModelComparison& comparison);
 
+// What model_comparer prints: images, alignment, camera errors, track,
+// segments, distance ratios and, with a surface (read from
+// `surface_path`), its deviation bins and dome fit.
+std::string FormatModelComparison(const ModelComparison& comparison,
+                                  const std::string& surface_path,
+                                  const ModelComparisonOptions& options);
+
 }  // namespace uw

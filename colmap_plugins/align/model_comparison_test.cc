@@ -197,5 +197,70 @@ TEST(CompareModels, NeedsThreeCommonImages) {
   }
 }
 
+// The printout's columns stay where scripts and readers expect them.
+TEST(FormatModelComparison, PrintsEveryFigureInItsColumn) {
+  ModelComparison comparison;
+  comparison.num_model_images = 10;
+  comparison.num_reference_images = 11;
+  comparison.missing_images = {"img11.png"};
+  comparison.cameras.resize(10);
+  comparison.alignment.b_from_a.scale = 0.5;
+  comparison.alignment.num_inliers = 10;
+  comparison.camera_rmse_m = 0.01;
+  comparison.camera_max_error_m = 0.02;
+  comparison.reference_extent_m = 20.0;
+  comparison.rotation_rmse_deg = 0.1;
+  comparison.rotation_max_deg = 0.25;
+  comparison.axis.length = 18.5;
+  comparison.axis.direction = Eigen::Vector3d(1, 0, 0);
+  SegmentScale segment;
+  segment.begin = 0.0;
+  segment.end = 9.25;
+  segment.num_images = 5;
+  segment.scale_3d = 1.00012;
+  segment.scale_along_track = 0.99987;
+  segment.view_tilt_deg = 2.5;
+  comparison.segments = {segment};
+  comparison.distance_ratios.num_pairs = 45;
+  comparison.distance_ratios.median_ratio = 1.0;
+  comparison.distance_ratios.max_abs_deviation = 0.002;
+  comparison.distance_ratios.p95_abs_deviation = 0.001;
+  SurfaceDeviation surface;
+  surface.num_points = 100;
+  surface.num_points_used = 90;
+  surface.rms_m = 0.003;
+  surface.bins.push_back({0.0, 18.5, 90, -0.001});
+  surface.dome.valid = false;
+  comparison.surface = surface;
+  ModelComparisonOptions options;
+  EXPECT_EQ(
+      FormatModelComparison(comparison, "mesh.ply", options),
+      "Images: model 10, reference 11, common 10 (reference images missing "
+      "from the model: 1, e.g. img11.png)\n"
+      "Alignment reference_from_model (similarity, least squares): scale "
+      "0.5, 10 of 10 inliers\n"
+      "Camera centres: RMSE 0.01 m = 0.0500 % of the 20 m extent, max 0.02 "
+      "m\n"
+      "Camera rotations: RMS 0.1 deg, max 0.25 deg\n"
+      "Track: 18.5 m along (1.0000, 0.0000, 0.0000)\n"
+      "segment      from_m       to_m  images   scale_3d  scale_along   "
+      "tilt_deg\n"
+      "A             0.000      9.250       5    1.00012      0.99987      "
+      "2.500\n"
+      "Camera distance ratios model/reference (45 pairs): median 1, max "
+      "|r-1| 0.002, 95 % |r-1| 0.001\n"
+      "Surface mesh.ply: 90 of 100 points (error <= 2 px), signed distance "
+      "(+ towards the cameras): RMS 0.003 m, mean 0 m, median 0 m, median "
+      "|d| 0 m, 95 % |d| 0 m, max |d| 0 m\n"
+      "bin          from_m       to_m   points     median_m\n"
+      "1             0.000     18.500       90    -0.001000\n"
+      "Dome fit: fewer than 3 bins with 10 points\n");
+  comparison.aligned = false;
+  comparison.surface.reset();
+  EXPECT_NE(FormatModelComparison(comparison, "", options)
+                .find("Alignment: none (the model is compared where it is)\n"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace uw

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
+#include <string>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -311,29 +312,22 @@ void WriteLCurvePlot(const LCurve& curve, const std::filesystem::path& path) {
     cv::circle(image, to_plot(x[*curve.corner_index], y[*curve.corner_index]),
                8, red, 2, cv::LINE_AA);
   }
-  std::ostringstream title;
-  title.precision(4);
-  title << "L-curve, lambda [px/m]: corner ";
-  if (curve.corner_weight_px_per_m) {
-    title << *curve.corner_weight_px_per_m;
-  } else {
-    title << "none";
-  }
+  std::string title = "L-curve, lambda [px/m]: corner ";
+  title += curve.corner_weight_px_per_m
+               ? fmt::format("{:.4g}", *curve.corner_weight_px_per_m)
+               : "none";
   if (curve.balance_weight_px_per_m) {
-    title << ", balance " << *curve.balance_weight_px_per_m;
+    title += fmt::format(", balance {:.4g}", *curve.balance_weight_px_per_m);
   }
   if (curve.noise_weight_px_per_m) {
-    title << ", noise levels " << *curve.noise_weight_px_per_m;
+    title += fmt::format(", noise levels {:.4g}", *curve.noise_weight_px_per_m);
   }
-  text(title.str(), {kMargin, 40});
-  std::ostringstream x_label;
-  x_label.precision(3);
-  x_label << "log10 reprojection MS [px^2]  (" << x_lo << " .. " << x_hi << ")";
-  text(x_label.str(), {kMargin, kPlotHeight - kMargin + 25});
-  std::ostringstream y_label;
-  y_label.precision(3);
-  y_label << "log10 navigation MS [m^2]  (" << y_lo << " .. " << y_hi << ")";
-  text(y_label.str(), {kMargin, kMargin - 10});
+  text(title, {kMargin, 40});
+  text(fmt::format("log10 reprojection MS [px^2]  ({:.3g} .. {:.3g})", x_lo,
+                   x_hi),
+       {kMargin, kPlotHeight - kMargin + 25});
+  text(fmt::format("log10 navigation MS [m^2]  ({:.3g} .. {:.3g})", y_lo, y_hi),
+       {kMargin, kMargin - 10});
   if (!k.empty()) {
     std::vector<cv::Point> line;
     for (const LCurvePoint& point : curve.points) {
@@ -353,11 +347,9 @@ void WriteLCurvePlot(const LCurve& curve, const std::filesystem::path& path) {
       cv::line(image, to_curvature(at, k_lo), to_curvature(at, k_hi), green, 1,
                cv::LINE_AA);
     }
-    std::ostringstream label;
-    label.precision(3);
-    label << "curvature vs log10 lambda [px/m] (" << s_lo << " .. " << s_hi
-          << ")";
-    text(label.str(), {kMargin, kPlotHeight + 15});
+    text(fmt::format("curvature vs log10 lambda [px/m] ({:.3g} .. {:.3g})",
+                     s_lo, s_hi),
+         {kMargin, kPlotHeight + 15});
   }
   WritePngAtomically(image, path);
 }

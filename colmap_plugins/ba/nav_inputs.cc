@@ -38,6 +38,49 @@ std::unordered_map<std::string, const Image*> ImagesByName(
 
 }  // namespace
 
+void NavInputOptions::Check() const {
+  if (override_sigma && !(position_sigma_m > 0.0)) {
+    throw ErrorAt("--Nav.override_sigma 1 needs --Nav.position_sigma > 0");
+  }
+  if (HasNavigation()) nav.Check();
+}
+
+NavInputs LoadNavInputs(const NavInputOptions& options,
+                        const Reconstruction& model,
+                        const std::string& model_name) {
+  options.Check();
+  if (options.HasNavigation()) {
+    std::vector<std::pair<std::string, camera_t>> images;
+    if (!options.database_path.empty()) {
+      const Database database =
+          Database::Open(options.database_path, Database::Mode::kReadOnly);
+      for (const DatabaseImage& image : database.ReadAllImages()) {
+        images.emplace_back(image.name, image.camera_id);
+      }
+    } else {
+      for (const Image& image : model.Images()) {
+        images.emplace_back(image.name, image.camera_id);
+      }
+    }
+    const LoadedCameraPriors loaded = LoadCameraPriors(
+        options.nav, images,
+        options.database_path.empty() ? "the model " + model_name
+                                      : options.database_path);
+    return NavInputsForModel(
+        loaded.priors, loaded.rig.cameras.empty() ? nullptr : &loaded.rig,
+        model, options.position_sigma_m, options.override_sigma,
+        options.rig_rotation_sigma_deg, options.rig_translation_sigma_m);
+  }
+  if (!options.database_path.empty()) {
+    const Database database =
+        Database::Open(options.database_path, Database::Mode::kReadOnly);
+    return NavInputsFromDatabase(database.ReadAllPosePriors(), model,
+                                 options.position_sigma_m,
+                                 options.override_sigma);
+  }
+  return {};
+}
+
 NavInputs NavInputsForModel(const std::vector<CameraPrior>& priors,
                             const RigConfig* rig, const Reconstruction& model,
                             double position_sigma_override_m, bool override_all,

@@ -3,11 +3,13 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "colmap_plugins/ba/nav_bundle_adjuster.h"
 #include "colmap_plugins/nav/camera_prior.h"
+#include "colmap_plugins/nav/pose_prior_import.h"
 #include "colmap_plugins/nav/rig_config.h"
 #include "colmap_plugins/scene/database.h"
 #include "colmap_plugins/scene/model.h"
@@ -20,6 +22,43 @@ struct NavInputs {
   std::optional<SoftRig> rig;
   size_t num_priors_without_image = 0;  // images not registered in the model
 };
+
+// Where the priors of the navigation-fused adjustment come from
+// (bundle_adjuster's and lcurve's --nav, --database_path, --Nav.* sigmas,
+// --Rig.* sigmas).
+struct NavInputOptions {
+  // With `nav.nav_path`: the images whose names the navigation may use (the
+  // model's when empty). Without it: the database whose pose priors are
+  // the priors.
+  std::string database_path;
+  // The navigation log, image times, rig and camera on the vehicle; no
+  // nav_path: none (priors from the database, or none at all).
+  PosePriorImportOptions nav;
+  // Per axis, m: the sigma of priors without a usable covariance, or of
+  // every prior with override_sigma.
+  double position_sigma_m = 0.0;
+  bool override_sigma = false;
+  // Sigmas of the rig cameras whose rig.json sigmas are 0 (deg, m).
+  double rig_rotation_sigma_deg = 0.0;
+  double rig_translation_sigma_m = 0.0;
+
+  bool HasNavigation() const { return !nav.nav_path.empty(); }
+  // Priors from anywhere: the navigation or the database.
+  bool HasPriorSource() const {
+    return HasNavigation() || !database_path.empty();
+  }
+  // override_sigma needs a position sigma; the camera on the vehicle must be
+  // finite.
+  void Check() const;
+};
+
+// The priors of the model's images: from the navigation (its rows checked
+// against the database's images or, without a database, the model's, named
+// `model_name` in messages), else from the database's pose priors; none
+// without either.
+NavInputs LoadNavInputs(const NavInputOptions& options,
+                        const Reconstruction& model,
+                        const std::string& model_name);
 
 // Priors of the model's images. A prior whose position covariance is not
 // positive definite (a zero sigma in the log) takes

@@ -1,9 +1,10 @@
 #include "colmap_plugins/exe/model_commands.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
+
+#include <fmt/format.h>
 
 #include "colmap_plugins/scene/model_stats.h"
 #include "common/util/error.h"
@@ -40,12 +41,12 @@ void RunModelAnalyzer(const ModelAnalyzerOptions& options) {
           : ReadModelText(options.path, files.layout);
   std::cout << FormatModelAnalyzerReport(ComputeModelStats(reconstruction));
   const ReprojectionErrors errors = RecomputeReprojectionErrors(reconstruction);
-  std::printf(
-      "Layout: %s, %s files\n"
-      "Recomputed mean reprojection error: %fpx (per observation %fpx, "
-      "max |recomputed - stored| per point %.3gpx, %zu of %zu "
+  fmt::print(
+      "Layout: {}, {} files\n"
+      "Recomputed mean reprojection error: {:f}px (per observation {:f}px, "
+      "max |recomputed - stored| per point {:.3g}px, {} of {} "
       "observations behind the camera)\n",
-      ModelLayoutName(files.layout).c_str(),
+      ModelLayoutName(files.layout),
       files.format == ModelFormat::kBinary ? "binary" : "text",
       errors.mean_point_error, errors.mean_observation_error,
       errors.max_stored_error_difference, errors.num_behind_camera,

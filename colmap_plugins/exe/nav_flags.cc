@@ -1,7 +1,5 @@
 #include "colmap_plugins/exe/nav_flags.h"
 
-#include <fmt/format.h>
-
 namespace uw {
 
 void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
@@ -30,16 +28,6 @@ void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
   cli->Add("--time_offset", &nav_to_camera.time_offset_s,
            "Seconds added to every image time to get the navigation time at "
            "which it was taken");
-}
-
-std::string DescribeNavToCamera(const NavToCameraOptions& options) {
-  const Eigen::Vector3d& lever = options.lever_arm_m;
-  const Eigen::Vector3d& boresight = options.boresight_deg;
-  return fmt::format(
-      "mount {}, lever arm {:g},{:g},{:g} m, boresight {:g},{:g},{:g} deg, "
-      "time offset {:g} s",
-      CameraMountName(options.mount), lever.x(), lever.y(), lever.z(),
-      boresight.x(), boresight.y(), boresight.z(), options.time_offset_s);
 }
 
 }  // namespace uw

@@ -17,7 +17,4 @@ namespace uw {
 void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
                  bool nav_required, const std::string& rig_flag);
 
-// One line: mount, lever arm, boresight, time offset.
-std::string DescribeNavToCamera(const NavToCameraOptions& options);
-
 }  // namespace uw

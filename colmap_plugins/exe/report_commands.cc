@@ -1,15 +1,61 @@
 #include "colmap_plugins/exe/report_commands.h"
 
-#include <cstdio>
-#include <string>
-
-#include "common/cli/command.h"
-#include "report/survey_report.h"
+#include <fmt/format.h>
 
 namespace uw {
+namespace {
 
-int RunSurveyReport(int argc, char** argv) {
-  CLI::App app(
+void AddSurveyReportFlags(CommandLine* cli,
+                          SurveyReportCommandOptions* options) {
+  SurveyReportInputs& inputs = options->inputs;
+  cli->Add("--input_path", &inputs.model_path,
+           "COLMAP model the report is about (BIN or TXT); the "
+           "navigation-fused one for a survey map in the navigation's frame")
+      ->required();
+  cli->Add("--output_path", &options->output_path,
+           "Report folder to write (index.html and the rest)")
+      ->required();
+  cli->Add("--ba_report", &inputs.ba_report_path,
+           "bundle_adjuster's ba_report.json: navigation fusion");
+  cli->Add("--nav", &inputs.nav_path,
+           "nav.csv: navigation track, dives, image count");
+  cli->Add("--laser_report", &inputs.laser_report_dir,
+           "laserscale estimate's --out folder: scale, overlays");
+  cli->Add("--compare_table", &inputs.compare_table_path,
+           "scripts/compare_with_colmap.sh's table.csv: stock colmap vs ours");
+  cli->Add("--dense_comparison", &inputs.dense_comparison_path,
+           "model_comparer --dense_mesh_path's compare.json: mesh accuracy "
+           "and coverage");
+  cli->Add("--mesh", &inputs.mesh_path,
+           "Dense mesh (PLY/OBJ) in the model's frame: survey map, mesh "
+           "figures");
+  cli->Add("--timings", &inputs.timings_path,
+           "timings.csv (stage,seconds): time per stage");
+  cli->Add("--truth_dir", &inputs.truth_dir,
+           "uwsim output folder: errors against the truth");
+  SurveyReportOptions& report = options->report;
+  cli->Add("--title", &report.title, "Title of the page");
+  cli->Add("--map_width", &report.map_width_px, "Width of the survey map (px)");
+  cli->Add("--thumbnail_width", &report.thumbnail_width_px,
+           "Width of the spot overlays' thumbnails (px)");
+}
+
+void RunSurveyReport(const SurveyReportCommandOptions& options) {
+  const SurveyReportResult result =
+      WriteSurveyReport(options.inputs, options.report, options.output_path);
+  for (const std::string& note : result.omitted) {
+    fmt::print("[survey_report] left out: {}\n", note);
+  }
+  fmt::print("[survey_report] {} files, {} images: {}\n", result.files.size(),
+             result.num_images, result.index_path.string());
+}
+
+}  // namespace
+
+Subcommand SurveyReportCommand() {
+  return MakeSubcommand<SurveyReportCommandOptions>(
+      "survey_report",
+      "survey report folder: index.html, figures, CSVs, report.json",
       "A survey report for a cruise report: one self-contained folder "
       "(index.html, report.json, CSVs, PNGs; relative links, no network) "
       "with a summary, a survey map (dense mesh from above, navigation, "
@@ -27,55 +73,7 @@ int RunSurveyReport(int argc, char** argv) {
       "OUT/compare/table.csv --dense_comparison OUT/dense/compare.json "
       "--mesh OUT/dense/mesh.ply --timings OUT/timings.csv --truth_dir "
       "OUT/sim --output_path OUT/report",
-      "uwcolmap survey_report");
-  SurveyReportInputs inputs;
-  SurveyReportOptions options;
-  std::string output_path;
-  app.add_option("--input_path", inputs.model_path,
-                 "COLMAP model the report is about (BIN or TXT); the "
-                 "navigation-fused one for a survey map in the navigation's "
-                 "frame")
-      ->required();
-  app.add_option("--output_path", output_path,
-                 "Report folder to write (index.html and the rest)")
-      ->required();
-  app.add_option("--ba_report", inputs.ba_report_path,
-                 "bundle_adjuster's ba_report.json: navigation fusion");
-  app.add_option("--nav", inputs.nav_path,
-                 "nav.csv: navigation track, dives, image count");
-  app.add_option("--laser_report", inputs.laser_report_dir,
-                 "laserscale estimate's --out folder: scale, overlays");
-  app.add_option("--compare_table", inputs.compare_table_path,
-                 "scripts/compare_with_colmap.sh's table.csv: stock colmap "
-                 "vs ours");
-  app.add_option("--dense_comparison", inputs.dense_comparison_path,
-                 "model_comparer --dense_mesh_path's compare.json: mesh "
-                 "accuracy and coverage");
-  app.add_option("--mesh", inputs.mesh_path,
-                 "Dense mesh (PLY/OBJ) in the model's frame: survey map, "
-                 "mesh figures");
-  app.add_option("--timings", inputs.timings_path,
-                 "timings.csv (stage,seconds): time per stage");
-  app.add_option("--truth_dir", inputs.truth_dir,
-                 "uwsim output folder: errors against the truth");
-  app.add_option("--title", options.title, "Title of the page")
-      ->capture_default_str();
-  app.add_option("--map_width", options.map_width_px,
-                 "Width of the survey map (px)")
-      ->capture_default_str();
-  app.add_option("--thumbnail_width", options.thumbnail_width_px,
-                 "Width of the spot overlays' thumbnails (px)")
-      ->capture_default_str();
-  return RunCommand(app, argc, argv, [&] {
-    const SurveyReportResult result =
-        WriteSurveyReport(inputs, options, output_path);
-    for (const std::string& note : result.omitted) {
-      std::printf("[survey_report] left out: %s\n", note.c_str());
-    }
-    std::printf("[survey_report] %zu files, %zu images: %s\n",
-                result.files.size(), result.num_images,
-                result.index_path.string().c_str());
-  });
+      AddSurveyReportFlags, RunSurveyReport);
 }
 
 }  // namespace uw

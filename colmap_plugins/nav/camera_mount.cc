@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
 #include <Eigen/Geometry>
 
 #include "colmap_plugins/nav/attitude.h"
@@ -89,6 +90,16 @@ Rigid3d VehicleFromCam(const NavToCameraOptions& options) {
       NominalVehicleFromCamRotation(options.mount) * boresight);
   vehicle_from_cam.translation = options.lever_arm_m;
   return vehicle_from_cam;
+}
+
+std::string DescribeNavToCamera(const NavToCameraOptions& options) {
+  const Eigen::Vector3d& lever = options.lever_arm_m;
+  const Eigen::Vector3d& boresight = options.boresight_deg;
+  return fmt::format(
+      "mount {}, lever arm {:g},{:g},{:g} m, boresight {:g},{:g},{:g} deg, "
+      "time offset {:g} s",
+      CameraMountName(options.mount), lever.x(), lever.y(), lever.z(),
+      boresight.x(), boresight.y(), boresight.z(), options.time_offset_s);
 }
 
 }  // namespace uw

@@ -49,4 +49,8 @@ struct NavToCameraOptions {
 // vehicle_from_cam: rotation mount * boresight, translation lever_arm_m.
 Rigid3d VehicleFromCam(const NavToCameraOptions& options);
 
+// One line: "mount down, lever arm 0.6,0,-0.3 m, boresight 0,0,0 deg, time
+// offset 0 s" (what pose_prior_importer prints and ba_report.json stores).
+std::string DescribeNavToCamera(const NavToCameraOptions& options);
+
 }  // namespace uw

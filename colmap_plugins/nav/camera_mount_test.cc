@@ -105,5 +105,20 @@ TEST(CameraMount, OptionsMustBeFinite) {
   EXPECT_THROW(options.Check(), Error);
 }
 
+// As the log's flags are typed: shortest numbers, the mount by name.
+TEST(CameraMount, DescriptionNamesEveryPartInOneLine) {
+  NavToCameraOptions options;
+  EXPECT_EQ(DescribeNavToCamera(options),
+            "mount down, lever arm 0,0,0 m, boresight 0,0,0 deg, time offset "
+            "0 s");
+  options.mount = CameraMount::kStarboard;
+  options.lever_arm_m = Eigen::Vector3d(0.6, 0, -0.3);
+  options.boresight_deg = Eigen::Vector3d(0.3, -0.5, 0.8);
+  options.time_offset_s = 0.25;
+  EXPECT_EQ(DescribeNavToCamera(options),
+            "mount starboard, lever arm 0.6,0,-0.3 m, boresight 0.3,-0.5,0.8 "
+            "deg, time offset 0.25 s");
+}
+
 }  // namespace
 }  // namespace uw

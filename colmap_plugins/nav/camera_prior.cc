@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <map>
-#include <sstream>
 #include <unordered_map>
+
+#include <fmt/format.h>
 
 #include "colmap_plugins/nav/attitude.h"
 #include "common/util/error.h"
@@ -87,11 +88,8 @@ struct Dive {
            time <= End() + LastInterval() * (1.0 + kRelativeTimeSlack);
   }
   std::string Span(const std::string& nav_name) const {
-    std::ostringstream text;
-    text.precision(10);
-    text << Start() << " to " << End() << " s, " << nav_name << " lines "
-         << rows.front()->line << " to " << rows.back()->line;
-    return text.str();
+    return fmt::format("{:.10g} to {:.10g} s, {} lines {} to {}", Start(),
+                       End(), nav_name, rows.front()->line, rows.back()->line);
   }
 };
 
@@ -134,21 +132,20 @@ class Navigation {
       if (dive.Covers(image.time_s)) covering.push_back(number);
     }
     if (covering.size() == 1) return covering[0];
-    std::ostringstream spans;
-    spans.precision(10);
+    std::string spans;
     for (const auto& [number, dive] : dives_) {
-      spans << "; dive " << number << ": " << dive.Span(nav_name_);
+      spans += fmt::format("; dive {}: {}", number, dive.Span(nav_name_));
     }
     if (covering.empty()) {
       throw ErrorAt(image.where, ": image '", image.name,
                     "' at navigation time ", image.time_s,
                     " s lies outside the navigation of every dive, even "
                     "allowing one sampling interval beyond each end",
-                    spans.str());
+                    spans);
     }
     throw ErrorAt(image.where, ": image '", image.name, "' at navigation time ",
                   image.time_s, " s lies in the navigation of several dives",
-                  spans.str(), "; give image_times.csv a dive column");
+                  spans, "; give image_times.csv a dive column");
   }
 
   // The vehicle when `image` was taken in dive `number` (from DiveOf).

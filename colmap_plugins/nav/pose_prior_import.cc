@@ -57,7 +57,7 @@ PosePrior DatabasePosePrior(const CameraPrior& prior, uint32_t image_id) {
 LoadedCameraPriors LoadCameraPriors(
     const PosePriorImportOptions& options,
     const std::vector<std::pair<std::string, camera_t>>& images,
-    const std::string& images_source) {
+    const std::string& images_source, ImagesNamedByNavigation named) {
   options.Check();
   LoadedCameraPriors loaded;
   NavigationSources sources;
@@ -74,6 +74,7 @@ LoadedCameraPriors LoadCameraPriors(
   }
   const RigConfig& rig = loaded.rig;
   const bool has_rig = !rig.cameras.empty();
+  const bool only_given = named == ImagesNamedByNavigation::kOnlyGiven;
 
   std::unordered_map<std::string, camera_t> camera_of_name;
   std::vector<std::string> image_names;
@@ -83,7 +84,7 @@ LoadedCameraPriors LoadCameraPriors(
   }
   const auto require_image = [&](const std::string& name,
                                  const std::string& where, const char* hint) {
-    if (camera_of_name.count(name) == 0) {
+    if (only_given && camera_of_name.count(name) == 0) {
       throw ErrorAt(where, ": image '", name, "' is not in ", images_source,
                     hint);
     }
@@ -96,7 +97,7 @@ LoadedCameraPriors LoadCameraPriors(
     }
     times = &image_times;
   } else {
-    if (nav.front().image_name.empty()) {
+    if (only_given && nav.front().image_name.empty()) {
       throw ErrorAt(sources.nav, ":", nav.front().line,
                     ": the navigation has no image names; give the images' "
                     "times (--image_times)");
@@ -115,7 +116,7 @@ LoadedCameraPriors LoadCameraPriors(
       times = &image_times;
     }
   }
-  if (has_rig && times != nullptr) {
+  if (only_given && has_rig && times != nullptr) {
     for (const ImageTime& time : *times) {
       const RigCameraConfig* camera = rig.CameraOfImage(time.image_name);
       const camera_t camera_id = camera_of_name.at(time.image_name);

@@ -51,12 +51,24 @@ struct PosePriorImportSummary {
 // in the camera frame.
 PosePrior DatabasePosePrior(const CameraPrior& prior, uint32_t image_id);
 
-// The navigation inputs of `options` read, checked against each other and
-// against `images` (name, camera id; named `images_source` in messages), and
-// turned into one prior per image (CameraPriorsFromNavigation). Throws
-// uw::Error naming the file and line for navigation rows (without
-// image_times) or image_times rows that name no image of `images`, and for
-// images whose camera is not the rig camera of their prefix.
+// Which images the navigation may name.
+enum class ImagesNamedByNavigation {
+  // Only the given images (pose_prior_importer, bundle_adjuster): a row of
+  // nav.csv (without image_times) or of image_times.csv naming another
+  // image is an error, and so is an image whose camera is not the rig
+  // camera of its prefix.
+  kOnlyGiven,
+  // Any (model_aligner): a reconstruction rarely registers every image, so
+  // rows of other images are priors too, for the caller to leave out.
+  kAny,
+};
+
+// The navigation inputs of `options` read, checked against each other and,
+// as `named` says, against `images` (name, camera id; named
+// `images_source` in messages), and turned into one prior per image
+// (CameraPriorsFromNavigation). With a rig and without image_times, the
+// images of `images` are placed by the rig's delays after the reference
+// camera's rows (RigImageTimes). Throws uw::Error naming the file and line.
 struct LoadedCameraPriors {
   std::vector<NavRecord> nav;
   RigConfig rig;  // no cameras: no rig
@@ -65,7 +77,8 @@ struct LoadedCameraPriors {
 LoadedCameraPriors LoadCameraPriors(
     const PosePriorImportOptions& options,
     const std::vector<std::pair<std::string, camera_t>>& images,
-    const std::string& images_source);
+    const std::string& images_source,
+    ImagesNamedByNavigation named = ImagesNamedByNavigation::kOnlyGiven);
 
 // Reads every input and checks it before anything is written, then writes
 // the priors in one transaction. Throws uw::Error naming the file and line

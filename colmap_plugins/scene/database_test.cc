@@ -4,6 +4,7 @@
 // Expected values come from the sqlite3 command-line shell, never from the
 // code under test.
 #include "colmap_plugins/scene/database.h"
+#include "colmap_plugins/scene/database_stats.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -1117,6 +1118,45 @@ TEST(DatabaseSchemas, ReadsTwoViewGeometriesWrittenByTheShell) {
   ASSERT_TRUE(geometry.cam2_from_cam1.has_value());
   EXPECT_TRUE(BitIdentical(geometry.cam2_from_cam1->rotation_wxyz, qvec));
   EXPECT_TRUE(BitIdentical(geometry.cam2_from_cam1->translation, tvec));
+}
+
+// database_analyzer's counts: keypoints of one image, a pair with matches,
+// one with inliers, priors with and without covariance.
+TEST(DatabaseStats, CountsWhatTheDatabaseHolds) {
+  const fs::path dir = TestDir();
+  const FixtureDatabase made = MakeFixture(dir, LaterFixtures()[3]);
+  {
+    Database db = Database::Open(made.path, Database::Mode::kReadWrite);
+    db.WriteKeypoints(1, FeatureKeypointsBlob::Zero(5, 4));
+    db.WriteKeypoints(2, FeatureKeypointsBlob::Zero(0, 4));
+    FeatureMatchesBlob matches(2, 2);
+    matches << 0, 1, 2, 0;
+    db.WriteMatches(1, 3, matches);
+    std::mt19937_64 random(1);
+    PosePrior without = RandomPrior(2, &random);
+    without.position_covariance.setConstant(PosePrior::kNaN);
+    db.WritePosePriors({RandomPrior(1, &random), without});
+  }
+  const FeatureMatchesBlob inliers = FeatureMatchesBlob::Zero(3, 2);
+  Sqlite3(made.path,
+          "INSERT INTO two_view_geometries(pair_id, rows, cols, data, "
+          "config) VALUES(" +
+              std::to_string(ExpectedPairId(1, 2)) + ", 3, 2, X'" +
+              HexOf(inliers) + "', 2);",
+          /*read_only=*/false);
+  const DatabaseStats stats = ComputeDatabaseStats(
+      Database::Open(made.path, Database::Mode::kReadOnly));
+  EXPECT_EQ(FormatDatabaseAnalyzerReport(stats),
+            "Schema: " + DatabaseSchemaName(DatabaseSchema::kColmap4) +
+                ", with rigs and frames\n"
+                "Cameras: 2\n"
+                "Images: 3\n"
+                "Images with keypoints: 1\n"
+                "Keypoints: 5\n"
+                "Matched pairs: 1\n"
+                "Verified pairs: 1\n"
+                "Inlier matches: 3\n"
+                "Pose priors: 2 (1 with position covariance)\n");
 }
 
 // ---------------------------------------------------------------------------

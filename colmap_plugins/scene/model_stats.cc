@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include <fmt/format.h>
 
 namespace uw {
 
@@ -38,21 +39,18 @@ ModelStats ComputeModelStats(const Reconstruction& reconstruction) {
 }
 
 std::string FormatModelAnalyzerReport(const ModelStats& stats) {
-  char buffer[512];
-  std::snprintf(buffer, sizeof(buffer),
-                "Cameras: %zu\n"
-                "Images: %zu\n"
-                "Registered images: %zu\n"
-                "Points: %zu\n"
-                "Observations: %zu\n"
-                "Mean track length: %f\n"
-                "Mean observations per image: %f\n"
-                "Mean reprojection error: %fpx\n",
-                stats.num_cameras, stats.num_images, stats.num_reg_images,
-                stats.num_points3D, stats.num_observations,
-                stats.mean_track_length, stats.mean_observations_per_image,
-                stats.mean_reprojection_error);
-  return buffer;
+  return fmt::format(
+      "Cameras: {}\n"
+      "Images: {}\n"
+      "Registered images: {}\n"
+      "Points: {}\n"
+      "Observations: {}\n"
+      "Mean track length: {:f}\n"
+      "Mean observations per image: {:f}\n"
+      "Mean reprojection error: {:f}px\n",
+      stats.num_cameras, stats.num_images, stats.num_reg_images,
+      stats.num_points3D, stats.num_observations, stats.mean_track_length,
+      stats.mean_observations_per_image, stats.mean_reprojection_error);
 }
 
 ReprojectionErrors RecomputeReprojectionErrors(

@@ -1,0 +1,163 @@
+#include "colmap_plugins/align/model_alignment.h"
+
+#include <fstream>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "common/util/error.h"
+#include "common/util/error_testing.h"
+#include "tests/support/process.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Five cameras (not on a line) with their centres at `centres`.
+const std::vector<Eigen::Vector3d> kCentres = {
+    {0, 0, 0}, {1, 0, 0}, {2, 0.5, 0}, {3, 0, 0.2}, {1.5, 2, 0}};
+
+Reconstruction FiveImages() {
+  Reconstruction model;
+  for (size_t k = 0; k < kCentres.size(); ++k) {
+    Image image;
+    image.image_id = static_cast<image_t>(k + 1);
+    image.camera_id = 1;
+    image.name = fmt::format("img{}.png", k);
+    image.cam_from_world.translation = -kCentres[k];
+    model.AddImage(image);
+  }
+  return model;
+}
+
+// The references: the centres scaled by 2 and moved by (10, 20, 30).
+Eigen::Vector3d ReferenceOf(const Eigen::Vector3d& centre) {
+  return 2.0 * centre + Eigen::Vector3d(10, 20, 30);
+}
+
+// nav.csv of a down-looking camera at the vehicle's reference point: one
+// row per image of the model and one of an image the model lacks.
+fs::path WriteNav(const fs::path& dir) {
+  const fs::path path = dir / "nav.csv";
+  std::ofstream out(path);
+  out << "image_name,time,dive,x,y,z,roll,pitch,yaw,std_x,std_y,std_z,"
+         "std_roll,std_pitch,std_yaw\n";
+  for (size_t k = 0; k <= kCentres.size(); ++k) {
+    const bool in_model = k < kCentres.size();
+    const Eigen::Vector3d position =
+        ReferenceOf(in_model ? kCentres[k] : Eigen::Vector3d(5, 5, 0));
+    out << fmt::format(
+        "{},{},1,{},{},{},0,0,0,0.1,0.1,0.1,1,1,1\n",
+        in_model ? fmt::format("img{}.png", k) : "unregistered.png", k,
+        position.x(), position.y(), position.z());
+  }
+  return path;
+}
+
+TEST(ModelAlignment, CheckHoldsTheRulesBetweenOptions) {
+  ModelAlignmentOptions options;
+  ExpectErrorContaining([&] { options.Check(); },
+                        "give exactly one of --ref_images_path, "
+                        "--database_path and --nav (got 0)");
+  options.ref_images_path = "ref.txt";
+  EXPECT_NO_THROW(options.Check());
+  options.nav.nav_path = "nav.csv";
+  ExpectErrorContaining([&] { options.Check(); }, "(got 2)");
+  options.nav.nav_path.clear();
+  options.associate = ReferenceAssociation::kClosestPoint;
+  ExpectErrorContaining([&] { options.Check(); },
+                        "--associate closest_point needs --nav");
+  options.associate = ReferenceAssociation::kName;
+  options.min_common_images = 2;
+  ExpectErrorContaining([&] { options.Check(); },
+                        "--min_common_images 2: a similarity needs at least 3");
+
+  for (const ReferenceAssociation association :
+       {ReferenceAssociation::kName, ReferenceAssociation::kClosestPoint}) {
+    EXPECT_EQ(
+        ReferenceAssociationFromName(ReferenceAssociationName(association)),
+        association);
+  }
+  ExpectErrorContaining([] { ReferenceAssociationFromName("time"); },
+                        "--associate time: expected name or closest_point");
+}
+
+// Unlike pose_prior_importer, the aligner takes a log with rows of images
+// the model did not register, and says how many.
+TEST(ModelAlignment, NavigationRowsOfOtherImagesAreNoError) {
+  const fs::path dir = testing::FreshTestDir("uw_model_alignment_nav");
+  ModelAlignmentOptions options;
+  options.nav.nav_path = WriteNav(dir);
+  const Reconstruction model = FiveImages();
+  const std::vector<ReferencePosition> references =
+      NavigationReferences(options.nav, model);
+  ASSERT_EQ(references.size(), 6u);
+  EXPECT_EQ(references.back().image_name, "unregistered.png");
+  ASSERT_TRUE(references.front().covariance);
+  EXPECT_NEAR((*references.front().covariance)(0, 0), 0.01, 1e-12);
+
+  const ModelAlignment alignment = AlignModel(options, model);
+  EXPECT_EQ(alignment.reference, options.nav.nav_path.string());
+  EXPECT_EQ(alignment.image_names.size(), 5u);
+  EXPECT_EQ(alignment.num_references, 6u);
+  EXPECT_EQ(alignment.unknown_names,
+            std::vector<std::string>{"unregistered.png"});
+  EXPECT_TRUE(alignment.covariance_weighted);
+  EXPECT_NEAR(alignment.similarity.b_from_a.scale, 2.0, 1e-9);
+  for (size_t k = 0; k < kCentres.size(); ++k) {
+    EXPECT_LT(
+        (alignment.similarity.b_from_a * kCentres[k] - ReferenceOf(kCentres[k]))
+            .norm(),
+        1e-9);
+  }
+
+  const std::string text = FormatModelAlignment(alignment);
+  EXPECT_EQ(text.rfind(fmt::format("Reference: {}\nImages with a reference "
+                                   "position: 5 (of 6 positions)\nReference "
+                                   "positions of no model image: 1 (e.g. "
+                                   "unregistered.png)\nWeighting: by the "
+                                   "reference covariances\n",
+                                   options.nav.nav_path.string()),
+                       0),
+            0u)
+      << text;
+  EXPECT_NE(text.find("Inliers: 5 of 5\nTransform reference_from_model: "
+                      "scale 2, rotation (qw qx qy qz) 1 "),
+            std::string::npos)
+      << text;
+
+  const nlohmann::json json = ModelAlignmentJson(alignment);
+  EXPECT_EQ(json["association"], "name");
+  EXPECT_EQ(json["num_images"], 5);
+  EXPECT_EQ(json["images"].size(), 5u);
+  EXPECT_FALSE(json.contains("iterations"));
+}
+
+TEST(ModelAlignment, TooFewCommonImagesIsAnError) {
+  const fs::path dir = testing::FreshTestDir("uw_model_alignment_ref");
+  ModelAlignmentOptions options;
+  options.ref_images_path = (dir / "ref.txt").string();
+  std::ofstream ref(options.ref_images_path);
+  for (size_t k = 0; k < kCentres.size(); ++k) {
+    const Eigen::Vector3d position = ReferenceOf(kCentres[k]);
+    ref << fmt::format("img{}.png {} {} {}\n", k, position.x(), position.y(),
+                       position.z());
+  }
+  ref.close();
+  options.similarity.robust = false;
+  const ModelAlignment alignment = AlignModel(options, FiveImages());
+  EXPECT_FALSE(alignment.covariance_weighted);
+  EXPECT_NE(FormatModelAlignment(alignment).find(
+                "Robust: no (least squares over every image)\n"),
+            std::string::npos);
+  options.min_common_images = 6;
+  ExpectErrorContaining(
+      [&] { AlignModel(options, FiveImages()); },
+      options.ref_images_path +
+          ": 5 images of the model have a reference; --min_common_images is "
+          "6");
+}
+
+}  // namespace
+}  // namespace uw
