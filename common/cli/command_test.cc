@@ -15,6 +15,8 @@ struct ExampleOptions {
   Eigen::Vector3d lever_arm = Eigen::Vector3d(0.6, 0.0, -0.3);
   std::vector<double> distances = {2.0, 3.0};
   std::vector<std::string> names = {"A", "B"};
+  bool warp = true;
+  Eigen::Vector3d colour = Eigen::Vector3d(1.0, 0.0, 0.0);
   void Check() const {
     if (max_iterations < 1) throw ErrorAt("--max_iterations must be >= 1");
   }
@@ -28,6 +30,8 @@ void AddExampleFlags(CommandLine* cli, ExampleOptions* options) {
   cli->Add("--lever_arm", &options->lever_arm, "Lever arm");
   cli->Add("--distances", &options->distances, "Distances");
   cli->Add("--names", &options->names, "Names");
+  cli->AddSwitch("--skip_warp", &options->warp, false, "No warp");
+  cli->AddThreeArguments("--colour", &options->colour, "R G B");
 }
 
 ExampleOptions last_run;
@@ -59,6 +63,8 @@ TEST(CommandLine, DefaultsAreTheFieldsInitialValues) {
   EXPECT_EQ(last_run.lever_arm, defaults.lever_arm);
   EXPECT_EQ(last_run.distances, defaults.distances);
   EXPECT_EQ(last_run.names, defaults.names);
+  EXPECT_EQ(last_run.warp, defaults.warp);
+  EXPECT_EQ(last_run.colour, defaults.colour);
 }
 
 TEST(CommandLine, FlagsWriteTheirFields) {
@@ -74,6 +80,25 @@ TEST(CommandLine, FlagsWriteTheirFields) {
   EXPECT_EQ(last_run.lever_arm, Eigen::Vector3d(1, -2, 3));
   EXPECT_EQ(last_run.distances, (std::vector<double>{1.5, 4.0}));
   EXPECT_EQ(last_run.names, std::vector<std::string>{"C"});
+}
+
+TEST(CommandLine, SwitchesTakeNoValueAndThreeArgumentsTakeThree) {
+  last_run = {};
+  ASSERT_EQ(RunCommandLine(Example(), {"--input_path", "m", "--skip_warp",
+                                       "--colour", "0", "0.5", "1"}),
+            0);
+  EXPECT_FALSE(last_run.warp);
+  EXPECT_EQ(last_run.colour, Eigen::Vector3d(0.0, 0.5, 1.0));
+  last_run = {};
+  ASSERT_EQ(
+      RunCommandLine(Example(), {"--input_path", "m", "--skip_warp=false"}), 0);
+  EXPECT_TRUE(last_run.warp);
+  EXPECT_EQ(
+      RunCommandLine(Example(), {"--input_path", "m", "--colour", "1", "0"}),
+      2);
+  EXPECT_EQ(RunCommandLine(Example(),
+                           {"--input_path", "m", "--colour", "1", "x", "0"}),
+            2);
 }
 
 TEST(CommandLine, BadValuesExitNonZero) {

@@ -102,4 +102,33 @@ CLI::Option* CommandLine::Add(const std::string& flag,
       JoinWithCommas<std::string>);
 }
 
+CLI::Option* CommandLine::AddSwitch(const std::string& flag, bool* field,
+                                    bool value_when_given,
+                                    const std::string& help) {
+  CLI::Option* option = app_.add_flag_function(
+      flag,
+      [field, value_when_given](std::int64_t count) {
+        if (count > 0) *field = value_when_given;
+      },
+      help);
+  return Bind(option, field, sizeof(bool));
+}
+
+CLI::Option* CommandLine::AddThreeArguments(const std::string& flag,
+                                            Eigen::Vector3d* field,
+                                            const std::string& help) {
+  CLI::Option* option = app_.add_option_function<std::vector<double>>(
+      flag,
+      [field](const std::vector<double>& values) {
+        *field = Eigen::Vector3d(values[0], values[1], values[2]);
+      },
+      help);
+  option->expected(3);
+  option->default_str(
+      "[" +
+      JoinWithCommas(std::vector<double>{field->x(), field->y(), field->z()}) +
+      "]");
+  return Bind(option, field, sizeof(Eigen::Vector3d));
+}
+
 }  // namespace uw
