@@ -58,6 +58,13 @@ int RunCommand(CLI::App& app, int argc, char** argv,
       app.parse(argc, argv);
     } catch (const CLI::ParseError& error) {
       return app.exit(error) == 0 ? 0 : 2;
+    } catch (const std::exception&) {
+      // CLI11 runs the flags' readers before it answers --help: a value a
+      // reader refuses must not hide the help that was asked for.
+      if (app.get_help_ptr() != nullptr && app.get_help_ptr()->count() > 0) {
+        return app.exit(CLI::CallForHelp());
+      }
+      throw;
     }
     body();
   } catch (const std::exception& error) {

@@ -126,6 +126,10 @@ TEST(CommandLine, BadValuesExitNonZero) {
             2);
 }
 
+TEST(CommandLine, HelpIsAnsweredEvenWhenAReaderRefusesAValue) {
+  EXPECT_EQ(RunCommandLine(Example(), {"--refine", "yes", "--help"}), 0);
+}
+
 TEST(CommandLine, ReadersNameTheFlag) {
   CommandLine cli("prog example", "");
   ExampleOptions options;
