@@ -102,6 +102,32 @@ CLI::Option* CommandLine::Add(const std::string& flag,
       JoinWithCommas<std::string>);
 }
 
+CLI::Option* CommandLine::AddIntegers(const std::string& flag,
+                                      const std::vector<int*>& fields,
+                                      const std::string& form,
+                                      const std::string& help) {
+  const std::string name = FlagName(flag);
+  CLI::Option* option = app_.add_option_function<std::string>(
+      flag,
+      [fields, name, form](const std::string& text) {
+        const std::vector<std::string> parts = CLI::detail::split(text, ',');
+        std::vector<int> values(fields.size());
+        for (size_t k = 0; k < fields.size(); ++k) {
+          if (parts.size() != fields.size() ||
+              !CLI::detail::lexical_cast(parts[k], values[k])) {
+            throw ErrorAt("--", name, " must be ", form, ", got '", text, "'");
+          }
+        }
+        for (size_t k = 0; k < fields.size(); ++k) *fields[k] = values[k];
+      },
+      help);
+  std::vector<int> defaults;
+  for (const int* field : fields) defaults.push_back(*field);
+  option->default_str(JoinWithCommas(defaults));
+  for (int* field : fields) Bind(option, field, sizeof(int));
+  return option;
+}
+
 CLI::Option* CommandLine::AddSwitch(const std::string& flag, bool* field,
                                     bool value_when_given,
                                     const std::string& help) {

@@ -49,6 +49,13 @@ class CommandLine {
   CLI::Option* Add(const std::string& flag, std::vector<std::string>* field,
                    const std::string& help);
 
+  // N comma-separated integers into N fields ("--imagersize 640,480" into
+  // a width and a height); `form` names them for the message
+  // ("WIDTH,HEIGHT"). The fields' values before parsing are the default.
+  CLI::Option* AddIntegers(const std::string& flag,
+                           const std::vector<int*>& fields,
+                           const std::string& form, const std::string& help);
+
   // A switch, as mrcal's and most tools' --skip-... flags: given without a
   // value, it sets `*field` to `value_when_given` (--skip_regularization
   // clears `regularization`); absent or "=false", it leaves the field.
