@@ -9,35 +9,9 @@
 #include "calib/corners_vnl.h"
 #include "calib/exe/board_flag.h"
 #include "calib/rig_views.h"
-#include "common/util/error.h"
 
 namespace uw {
 namespace {
-
-// WIDTH,HEIGHT into both fields: --imagersize binds the width and writes
-// the height beside it.
-CLI::Option* AddImagerSizeFlag(CommandLine* cli,
-                               MrcalCalibrationOptions* calibration) {
-  int* height = &calibration->image_height;
-  return cli->Add<int>(
-      "--imagersize", &calibration->image_width, "WIDTH,HEIGHT in pixels",
-      [height](const std::string& text) {
-        const size_t comma = text.find(',');
-        int width = 0;
-        try {
-          if (comma == std::string::npos) throw 0;
-          size_t used = 0;
-          width = std::stoi(text.substr(0, comma), &used);
-          if (used != comma) throw 0;
-          *height = std::stoi(text.substr(comma + 1), &used);
-          if (used != text.size() - comma - 1) throw 0;
-        } catch (...) {
-          throw ErrorAt("--imagersize must be WIDTH,HEIGHT, got '", text, "'");
-        }
-        return width;
-      },
-      [](const int&) { return std::string(); });
-}
 
 void AddCalibrateFlags(CommandLine* cli, CalibrateOptions* options) {
   AddBoardFlag(cli, &options->board,
@@ -53,7 +27,12 @@ void AddCalibrateFlags(CommandLine* cli, CalibrateOptions* options) {
            "Seed focal length, pixels")
       ->required()
       ->default_str("");
-  AddImagerSizeFlag(cli, &options->calibration)->required();
+  cli->AddIntegers("--imagersize",
+                   {&options->calibration.image_width,
+                    &options->calibration.image_height},
+                   "WIDTH,HEIGHT", "WIDTH,HEIGHT in pixels")
+      ->required()
+      ->default_str("");
   cli->Add("--out", &options->out, "Folder for the outputs (created)")
       ->required();
   // CLI11's own list: a comma list or several arguments, as always.

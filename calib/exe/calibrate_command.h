@@ -18,7 +18,7 @@ struct CalibrateOptions {
   std::string out;           // folder for the outputs (created)
   // A glob of image names per camera of a rig (calib/rig_views.h).
   std::vector<std::string> camera_globs = {"*"};
-  // --imagersize fills image_width and image_height.
+  // --imagersize WIDTH,HEIGHT writes image_width and image_height.
   MrcalCalibrationOptions calibration;
   ProjectionUncertaintyOptions uncertainty;
 
