@@ -200,4 +200,33 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
   WriteFilesAtomically(files, true);
 }
 
+std::vector<std::string> DescribeRigCalibration(
+    const MrcalRigCalibration& result,
+    const ProjectionUncertaintyOptions& uncertainty) {
+  std::vector<std::string> lines;
+  for (size_t c = 0; c < result.cameras.size(); ++c) {
+    const MrcalCalibration& camera = result.cameras[c];
+    lines.push_back(fmt::format(
+        "camera {}: {} views, {} outliers of {} corners{}", c,
+        camera.images.size(), camera.num_outliers, camera.num_corners_observed,
+        c == 0 ? std::string()
+               : fmt::format(", baseline {:.6f} m",
+                             result.cam_from_rig[c].translation.norm())));
+  }
+  const double distance = uncertainty.distance;
+  for (size_t c = 0; c < result.cameras.size(); ++c) {
+    const MrcalCalibration& camera = result.cameras[c];
+    const double centre = ProjectionUncertaintyAtPixel(
+        camera,
+        {(camera.image_width - 1) / 2.0, (camera.image_height - 1) / 2.0},
+        distance);
+    lines.push_back(fmt::format(
+        "camera {}: projection uncertainty at the centre {:.3f} px (1-sigma, "
+        "worst direction), {}",
+        c, centre,
+        distance > 0.0 ? fmt::format("{:g} m out", distance) : "at infinity"));
+  }
+  return lines;
+}
+
 }  // namespace uw

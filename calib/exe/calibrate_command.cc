@@ -3,8 +3,6 @@
 #include <cstdio>
 #include <filesystem>
 
-#include <fmt/format.h>
-
 #include "calib/calibration_report.h"
 #include "calib/corners_vnl.h"
 #include "calib/exe/board_flag.h"
@@ -69,34 +67,9 @@ void RunCalibrate(const CalibrateOptions& options) {
   const std::filesystem::path dir(options.out);
   WriteCalibrationReport(result, options.camera_globs, command,
                          options.uncertainty, dir);
-  for (size_t c = 0; c < result.cameras.size(); ++c) {
-    std::printf(
-        "[calibrate] camera %zu: %zu views, %d outliers of %d corners%s\n", c,
-        result.cameras[c].images.size(), result.cameras[c].num_outliers,
-        result.cameras[c].num_corners_observed,
-        c == 0 ? ""
-               : fmt::format(", baseline {:.6f} m",
-                             result.cam_from_rig[c].translation.norm())
-                     .c_str());
-  }
-  const double distance = options.uncertainty.distance;
-  for (size_t c = 0; c < result.cameras.size(); ++c) {
-    const MrcalCalibration& camera = result.cameras[c];
-    const double centre = ProjectionUncertaintyAtPixel(
-        camera,
-        {(camera.image_width - 1) / 2.0, (camera.image_height - 1) / 2.0},
-        distance);
-    if (distance > 0.0) {
-      std::printf(
-          "[calibrate] camera %zu: projection uncertainty at the centre "
-          "%.3f px (1-sigma, worst direction), %g m out\n",
-          c, centre, distance);
-    } else {
-      std::printf(
-          "[calibrate] camera %zu: projection uncertainty at the centre "
-          "%.3f px (1-sigma, worst direction), at infinity\n",
-          c, centre);
-    }
+  for (const std::string& line :
+       DescribeRigCalibration(result, options.uncertainty)) {
+    std::printf("[calibrate] %s\n", line.c_str());
   }
   std::printf("[calibrate] RMS %.3f px; %s\n", result.rms_px,
               (dir / "camera-0.cameramodel").c_str());
