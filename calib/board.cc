@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <sstream>
+
+#include <fmt/format.h>
 
 #include "calib/corners_vnl.h"
 #include "common/util/error.h"
@@ -51,10 +52,10 @@ int ParseCount(const std::string& text, const std::string& spec,
 // The shortest text that reads back as `value` (0.025, not
 // 0.025000000000000001).
 std::string ShortestText(double value) {
-  char text[32];
+  std::string text;
   for (int precision = 6; precision <= 17; ++precision) {
-    std::snprintf(text, sizeof(text), "%.*g", precision, value);
-    if (std::strtod(text, nullptr) == value) break;
+    text = fmt::format("{:.{}g}", value, precision);
+    if (std::strtod(text.c_str(), nullptr) == value) break;
   }
   return text;
 }

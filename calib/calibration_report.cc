@@ -1,10 +1,10 @@
 #include "calib/calibration_report.h"
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -43,9 +43,7 @@ PendingFile PngFile(const std::filesystem::path& path, const cv::Mat& image) {
 // recomputing.
 double Rounded(double value) {
   if (!std::isfinite(value)) return value;
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.4g", value);
-  return std::strtod(text, nullptr);
+  return std::strtod(fmt::format("{:.4g}", value).c_str(), nullptr);
 }
 
 nlohmann::json RoundedList(const std::vector<double>& values) {
@@ -138,11 +136,9 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
     const bool rig = result.cameras.size() > 1;
     std::string title = "Projection uncertainty (1-sigma, worst direction, px)";
     if (rig) title += " of camera " + std::to_string(c);
-    char distance[64];
-    std::snprintf(distance, sizeof(distance), ", looking out to %g m",
-                  uncertainty.distance);
-    title +=
-        uncertainty.distance > 0.0 ? distance : ", looking out to infinity";
+    title += uncertainty.distance > 0.0
+                 ? fmt::format(", looking out to {:g} m", uncertainty.distance)
+                 : ", looking out to infinity";
     files.push_back(PngFile(
         dir /
             (rig ? "projection_uncertainty-camera-" + std::to_string(c) + ".png"
@@ -173,8 +169,8 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
                camera.lens_model, camera.intrinsics, camera.image_width,
                camera.image_height, result.cam_from_rig[c],
                {"generated with " + command,
-                "RMS reprojection error: " + std::to_string(result.rms_px) +
-                    " pixels",
+                fmt::format("RMS reprojection error: {:.6f} pixels",
+                            result.rms_px),
                 "Noutliers: " + std::to_string(camera.num_outliers) +
                     " out of " + std::to_string(camera.num_corners_observed)});
          }});
@@ -202,6 +198,35 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
   files.push_back(PngFile(dir / "residuals.png", residuals.Render()));
   files.push_back(PngFile(dir / "residuals_per_image.png", per_image.Render()));
   WriteFilesAtomically(files, true);
+}
+
+std::vector<std::string> DescribeRigCalibration(
+    const MrcalRigCalibration& result,
+    const ProjectionUncertaintyOptions& uncertainty) {
+  std::vector<std::string> lines;
+  for (size_t c = 0; c < result.cameras.size(); ++c) {
+    const MrcalCalibration& camera = result.cameras[c];
+    lines.push_back(fmt::format(
+        "camera {}: {} views, {} outliers of {} corners{}", c,
+        camera.images.size(), camera.num_outliers, camera.num_corners_observed,
+        c == 0 ? std::string()
+               : fmt::format(", baseline {:.6f} m",
+                             result.cam_from_rig[c].translation.norm())));
+  }
+  const double distance = uncertainty.distance;
+  for (size_t c = 0; c < result.cameras.size(); ++c) {
+    const MrcalCalibration& camera = result.cameras[c];
+    const double centre = ProjectionUncertaintyAtPixel(
+        camera,
+        {(camera.image_width - 1) / 2.0, (camera.image_height - 1) / 2.0},
+        distance);
+    lines.push_back(fmt::format(
+        "camera {}: projection uncertainty at the centre {:.3f} px (1-sigma, "
+        "worst direction), {}",
+        c, centre,
+        distance > 0.0 ? fmt::format("{:g} m out", distance) : "at infinity"));
+  }
+  return lines;
 }
 
 }  // namespace uw

@@ -25,4 +25,12 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
                             const ProjectionUncertaintyOptions& uncertainty,
                             const std::filesystem::path& dir);
 
+// What uwcalib calibrate prints of `result`, a line each: per camera its
+// views and outliers (after camera 0 also its baseline, the board's units),
+// then per camera the projection uncertainty at the image's centre for a
+// point uncertainty.distance out (ProjectionUncertaintyAtPixel).
+std::vector<std::string> DescribeRigCalibration(
+    const MrcalRigCalibration& result,
+    const ProjectionUncertaintyOptions& uncertainty);
+
 }  // namespace uw

@@ -1,8 +1,8 @@
 #include "calib/calibration_testing.h"
 
 #include <cmath>
-#include <cstdio>
 
+#include <fmt/format.h>
 #include <Eigen/Geometry>
 
 #include "calib/corners_vnl.h"
@@ -70,13 +70,11 @@ std::string RunMrcalCalibrateCameras(const std::vector<RigCameraViews>& cameras,
                                all_views, CornerWeightColumn::kLevel, {});
                          }}},
                        false);
-  char flags[512];
-  std::snprintf(flags, sizeof(flags),
-                " --lensmodel %s --focal %.17g --object-spacing %.17g"
-                " --object-width-n %d --object-height-n %d --imagersize %d %d",
-                options.lens_model.c_str(), options.focal_px, board.spacing_m,
-                board.grid_width, board.grid_height, options.image_width,
-                options.image_height);
+  const std::string flags = fmt::format(
+      " --lensmodel {} --focal {:.17g} --object-spacing {:.17g}"
+      " --object-width-n {} --object-height-n {} --imagersize {} {}",
+      options.lens_model, options.focal_px, board.spacing_m, board.grid_width,
+      board.grid_height, options.image_width, options.image_height);
   std::string quoted_globs;
   for (const std::string& glob : globs) quoted_globs += " '" + glob + "'";
   const ProcessResult tool =

@@ -1,9 +1,10 @@
 #include "calib/corners_vnl.h"
 
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <sstream>
+
+#include <fmt/format.h>
 
 #include "common/util/error.h"
 #include "common/util/file.h"
@@ -23,12 +24,6 @@ int LevelOfWeight(double weight) {
     if (weight == std::ldexp(1.0, -level)) return level;
   }
   return -1;
-}
-
-std::string FormatNumber(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), format, value);
-  return buffer;
 }
 
 // A field that must be a finite number, or "-".
@@ -89,8 +84,8 @@ std::string FormatCornersVnl(const std::vector<BoardObservation>& observations,
         text << image << " - - -\n";
         continue;
       }
-      text << image << " " << FormatNumber("%.6f", pixel.x()) << " "
-           << FormatNumber("%.6f", pixel.y()) << " ";
+      text << image << " "
+           << fmt::format("{:.6f} {:.6f} ", pixel.x(), pixel.y());
       if (column == CornerWeightColumn::kLevel) {
         const int level = LevelOfWeight(weight);
         if (level < 0) {
@@ -99,7 +94,7 @@ std::string FormatCornersVnl(const std::vector<BoardObservation>& observations,
         }
         text << level << "\n";
       } else {
-        text << FormatNumber("%.9g", weight) << "\n";
+        text << fmt::format("{:.9g}\n", weight);
       }
     }
   }

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <memory>
 #include <set>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <suitesparse/cholmod.h>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
@@ -44,12 +44,6 @@ Eigen::Matrix3d RotationFromRodrigues(const mrcal_point3_t& r) {
   const double angle = axis.norm();
   if (angle < 1e-300) return Eigen::Matrix3d::Identity();
   return Eigen::AngleAxisd(angle, axis / angle).toRotationMatrix();
-}
-
-std::string Number(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
-  return buffer;
 }
 
 mrcal_pose_t PoseFromRigid(const Rigid3d& b_from_a) {
@@ -630,12 +624,12 @@ std::string FormatCameraModel(const std::string& lens_model,
   text << "{\n    'lensmodel':  '" << lens_model << "',\n"
        << "    # intrinsics are fx,fy,cx,cy,distortion0,distortion1,....\n"
        << "    'intrinsics': [";
-  for (const double value : intrinsics) text << " " << Number(value) << ",";
+  for (const double value : intrinsics) text << fmt::format(" {:.17g},", value);
   text << " ],\n"
        << "    # extrinsics are rt_fromref\n"
        << "    'extrinsics': [";
   for (const mrcal_point3_t* part : {&extrinsics.r, &extrinsics.t}) {
-    for (int i = 0; i < 3; ++i) text << " " << Number(part->xyz[i]) << ",";
+    for (int i = 0; i < 3; ++i) text << fmt::format(" {:.17g},", part->xyz[i]);
   }
   text << " ],\n"
        << "    'imagersize': [ " << image_width << ", " << image_height

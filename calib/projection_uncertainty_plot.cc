@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
+#include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
 #include "common/util/error.h"
@@ -26,11 +26,7 @@ double ContourStep(double colour_max) {
   return best;
 }
 
-std::string Format(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.3g", value);
-  return text;
-}
+std::string Format(double value) { return fmt::format("{:.3g}", value); }
 
 // The map at image pixel (x, y): bilinear between its samples; a sample
 // that does not unproject counts as very uncertain, as mrcal counts it.
@@ -160,13 +156,11 @@ cv::Mat RenderProjectionUncertainty(const ProjectionUncertaintyMap& map,
   cv::rectangle(canvas, cv::Rect(left - 1, top - 1, width + 2, height + 2),
                 cv::Scalar(0, 0, 0));
   Text(&canvas, title, {left, 22}, 0.5, cv::Scalar(0, 0, 0));
-  char line[200];
-  std::snprintf(line, sizeof(line),
-                "image %dx%d; centre %s px, worst sample %s px; corners' "
-                "noise %s px (from the residuals)",
-                image_width, image_height, Format(map.at_centre_px).c_str(),
-                Format(map.MaxPx()).c_str(),
-                Format(map.observed_pixel_sigma).c_str());
+  const std::string line = fmt::format(
+      "image {}x{}; centre {:.3g} px, worst sample {:.3g} px; corners' "
+      "noise {:.3g} px (from the residuals)",
+      image_width, image_height, map.at_centre_px, map.MaxPx(),
+      map.observed_pixel_sigma);
   Text(&canvas, line, {left, 44}, 0.42, cv::Scalar(60, 60, 60));
   cv::Mat1b ramp(height, bar_width);
   for (int v = 0; v < height; ++v) {

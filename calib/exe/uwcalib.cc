@@ -1,10 +1,10 @@
 // uwcalib: mrcal-style camera calibration sessions. Like `colmap`, the
 // first argument names the command and the rest are its flags.
-#include "calib/exe/commands.h"
-#include "common/cli/command.h"
+#include "calib/exe/uwcalib_commands.h"
 
 int main(int argc, char** argv) {
   return uw::DispatchSubcommand(
+      "uwcalib",
       "uwcalib: camera calibration from board images, with mrcal.\n\n"
       "Usage:\n  uwcalib <command> [--flag value ...]\n"
       "  uwcalib <command> --help\n\n"
@@ -22,17 +22,5 @@ int main(int argc, char** argv) {
       "  uwcalib lasers-from-mission --input_path sparse/0 --mesh mesh.ply "
       "--spots spots.json --poses poses.json --origins origins.json --out "
       "lasers.json\n",
-      {
-          {"detect", uw::RunCalibDetect,
-           "find the board's corners in calibration images (corners.vnl)"},
-          {"calibrate", uw::RunCalibrate,
-           "calibrate a camera from corners.vnl with mrcal (.cameramodel)"},
-          {"export", uw::RunCalibExport,
-           "a .cameramodel as a COLMAP camera or OpenCV YAML"},
-          {"lasers", uw::RunCalibLasers,
-           "laser lines from board images at many distances (lasers.json)"},
-          {"lasers-from-mission", uw::RunLasersFromMission,
-           "laser directions from spots in localized mission images"},
-      },
-      argc, argv);
+      uw::UwcalibCommands(), argc, argv);
 }

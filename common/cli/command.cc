@@ -58,6 +58,13 @@ int RunCommand(CLI::App& app, int argc, char** argv,
       app.parse(argc, argv);
     } catch (const CLI::ParseError& error) {
       return app.exit(error) == 0 ? 0 : 2;
+    } catch (const std::exception&) {
+      // CLI11 runs the flags' readers before it answers --help: a value a
+      // reader refuses must not hide the help that was asked for.
+      if (app.get_help_ptr() != nullptr && app.get_help_ptr()->count() > 0) {
+        return app.exit(CLI::CallForHelp());
+      }
+      throw;
     }
     body();
   } catch (const std::exception& error) {
@@ -109,16 +116,17 @@ std::vector<std::string> UnboundFlags(const Subcommand& command) {
   std::set<std::pair<const void*, size_t>> fields;
   for (const CLI::Option* option : cli.app().get_options()) {
     if (option == cli.app().get_help_ptr()) continue;
-    const auto binding =
-        std::find_if(cli.Bindings().begin(), cli.Bindings().end(),
-                     [&](const CommandLine::Binding& candidate) {
-                       return candidate.option == option;
-                     });
-    if (binding == cli.Bindings().end() ||
-        !cli.WritesIntoOptions(binding->field, binding->size) ||
-        !fields.insert({binding->field, binding->size}).second) {
-      unbound.push_back(option->get_name());
+    // A flag may write several fields (AddIntegers); each must be its own.
+    bool bound = false;
+    bool own_fields = true;
+    for (const CommandLine::Binding& binding : cli.Bindings()) {
+      if (binding.option != option) continue;
+      bound = true;
+      own_fields = own_fields &&
+                   cli.WritesIntoOptions(binding.field, binding.size) &&
+                   fields.insert({binding.field, binding.size}).second;
     }
+    if (!bound || !own_fields) unbound.push_back(option->get_name());
   }
   return unbound;
 }

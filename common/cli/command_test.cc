@@ -15,6 +15,10 @@ struct ExampleOptions {
   Eigen::Vector3d lever_arm = Eigen::Vector3d(0.6, 0.0, -0.3);
   std::vector<double> distances = {2.0, 3.0};
   std::vector<std::string> names = {"A", "B"};
+  bool warp = true;
+  Eigen::Vector3d colour = Eigen::Vector3d(1.0, 0.0, 0.0);
+  int width = 640;
+  int height = 480;
   void Check() const {
     if (max_iterations < 1) throw ErrorAt("--max_iterations must be >= 1");
   }
@@ -28,6 +32,10 @@ void AddExampleFlags(CommandLine* cli, ExampleOptions* options) {
   cli->Add("--lever_arm", &options->lever_arm, "Lever arm");
   cli->Add("--distances", &options->distances, "Distances");
   cli->Add("--names", &options->names, "Names");
+  cli->AddSwitch("--skip_warp", &options->warp, false, "No warp");
+  cli->AddThreeArguments("--colour", &options->colour, "R G B");
+  cli->AddIntegers("--size", {&options->width, &options->height},
+                   "WIDTH,HEIGHT", "Size");
 }
 
 ExampleOptions last_run;
@@ -59,14 +67,19 @@ TEST(CommandLine, DefaultsAreTheFieldsInitialValues) {
   EXPECT_EQ(last_run.lever_arm, defaults.lever_arm);
   EXPECT_EQ(last_run.distances, defaults.distances);
   EXPECT_EQ(last_run.names, defaults.names);
+  EXPECT_EQ(last_run.warp, defaults.warp);
+  EXPECT_EQ(last_run.colour, defaults.colour);
+  EXPECT_EQ(last_run.width, defaults.width);
+  EXPECT_EQ(last_run.height, defaults.height);
 }
 
 TEST(CommandLine, FlagsWriteTheirFields) {
   last_run = {};
-  ASSERT_EQ(RunCommandLine(Example(),
-                           {"--input_path", "m", "--max_iterations", "7",
-                            "--sigma", "2.5", "--refine", "0", "--lever_arm",
-                            "1,-2,3", "--distances", "1.5,4", "--names", "C"}),
+  ASSERT_EQ(RunCommandLine(
+                Example(),
+                {"--input_path", "m", "--max_iterations", "7", "--sigma", "2.5",
+                 "--refine", "0", "--lever_arm", "1,-2,3", "--distances",
+                 "1.5,4", "--names", "C", "--size", "1024,768"}),
             0);
   EXPECT_EQ(last_run.max_iterations, 7);
   EXPECT_EQ(last_run.sigma, 2.5);
@@ -74,6 +87,27 @@ TEST(CommandLine, FlagsWriteTheirFields) {
   EXPECT_EQ(last_run.lever_arm, Eigen::Vector3d(1, -2, 3));
   EXPECT_EQ(last_run.distances, (std::vector<double>{1.5, 4.0}));
   EXPECT_EQ(last_run.names, std::vector<std::string>{"C"});
+  EXPECT_EQ(last_run.width, 1024);
+  EXPECT_EQ(last_run.height, 768);
+}
+
+TEST(CommandLine, SwitchesTakeNoValueAndThreeArgumentsTakeThree) {
+  last_run = {};
+  ASSERT_EQ(RunCommandLine(Example(), {"--input_path", "m", "--skip_warp",
+                                       "--colour", "0", "0.5", "1"}),
+            0);
+  EXPECT_FALSE(last_run.warp);
+  EXPECT_EQ(last_run.colour, Eigen::Vector3d(0.0, 0.5, 1.0));
+  last_run = {};
+  ASSERT_EQ(
+      RunCommandLine(Example(), {"--input_path", "m", "--skip_warp=false"}), 0);
+  EXPECT_TRUE(last_run.warp);
+  EXPECT_EQ(
+      RunCommandLine(Example(), {"--input_path", "m", "--colour", "1", "0"}),
+      2);
+  EXPECT_EQ(RunCommandLine(Example(),
+                           {"--input_path", "m", "--colour", "1", "x", "0"}),
+            2);
 }
 
 TEST(CommandLine, BadValuesExitNonZero) {
@@ -94,11 +128,17 @@ TEST(CommandLine, BadValuesExitNonZero) {
   EXPECT_EQ(
       RunCommandLine(Example(), {"--input_path", "m", "--distances", "1,x"}),
       1);
+  EXPECT_EQ(RunCommandLine(Example(), {"--input_path", "m", "--size", "640"}),
+            1);
   EXPECT_EQ(
       RunCommandLine(Example(), {"--input_path", "m", "--max_iterations", "0"}),
       1);
   EXPECT_EQ(RunCommandLine(Example(), {"--input_path", "m", "--unknown", "1"}),
             2);
+}
+
+TEST(CommandLine, HelpIsAnsweredEvenWhenAReaderRefusesAValue) {
+  EXPECT_EQ(RunCommandLine(Example(), {"--refine", "yes", "--help"}), 0);
 }
 
 TEST(CommandLine, ReadersNameTheFlag) {
@@ -114,6 +154,9 @@ TEST(CommandLine, ReadersNameTheFlag) {
   ExpectErrorContaining(
       [&] { cli.app().parse("--input_path m --distances 1,,2", false); },
       "--distances: '' is not a number");
+  ExpectErrorContaining(
+      [&] { cli.app().parse("--input_path m --size 640x480", false); },
+      "--size must be WIDTH,HEIGHT, got '640x480'");
 }
 
 TEST(UnboundFlags, EveryFlagOfABoundCommandWritesItsOwnField) {
@@ -123,6 +166,7 @@ TEST(UnboundFlags, EveryFlagOfABoundCommandWritesItsOwnField) {
 struct LooseOptions {
   int bound = 0;
   int shared = 0;
+  int width = 0;
   void Check() const {}
 };
 void AddLooseFlags(CommandLine* cli, LooseOptions* options) {
@@ -132,6 +176,7 @@ void AddLooseFlags(CommandLine* cli, LooseOptions* options) {
   cli->app().add_option("--raw", options->bound, "");  // not bound at all
   cli->Add("--shared", &options->shared, "");
   cli->Add("--shared_again", &options->shared, "");  // the same field
+  cli->AddIntegers("--size", {&options->width, &outside}, "W,H", "");
 }
 void RunLoose(const LooseOptions&) {}
 
@@ -139,7 +184,8 @@ TEST(UnboundFlags, NamesFlagsOutsideTheOptionsUnboundOrShared) {
   const Subcommand loose =
       MakeSubcommand<LooseOptions>("loose", "", "", AddLooseFlags, RunLoose);
   EXPECT_EQ(UnboundFlags(loose),
-            (std::vector<std::string>{"--outside", "--raw", "--shared_again"}));
+            (std::vector<std::string>{"--outside", "--raw", "--shared_again",
+                                      "--size"}));
 }
 
 }  // namespace

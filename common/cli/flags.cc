@@ -105,4 +105,59 @@ CLI::Option* CommandLine::Add(const std::string& flag,
       JoinTexts);
 }
 
+CLI::Option* CommandLine::AddIntegers(const std::string& flag,
+                                      const std::vector<int*>& fields,
+                                      const std::string& form,
+                                      const std::string& help) {
+  const std::string name = FlagName(flag);
+  CLI::Option* option = app_.add_option_function<std::string>(
+      flag,
+      [fields, name, form](const std::string& text) {
+        const std::vector<std::string> parts = CLI::detail::split(text, ',');
+        std::vector<int> values(fields.size());
+        for (size_t k = 0; k < fields.size(); ++k) {
+          if (parts.size() != fields.size() ||
+              !CLI::detail::lexical_cast(parts[k], values[k])) {
+            throw ErrorAt("--", name, " must be ", form, ", got '", text, "'");
+          }
+        }
+        for (size_t k = 0; k < fields.size(); ++k) *fields[k] = values[k];
+      },
+      help);
+  std::vector<int> defaults;
+  for (const int* field : fields) defaults.push_back(*field);
+  option->default_str(JoinWithCommas(defaults));
+  for (int* field : fields) Bind(option, field, sizeof(int));
+  return option;
+}
+
+CLI::Option* CommandLine::AddSwitch(const std::string& flag, bool* field,
+                                    bool value_when_given,
+                                    const std::string& help) {
+  CLI::Option* option = app_.add_flag_function(
+      flag,
+      [field, value_when_given](std::int64_t count) {
+        if (count > 0) *field = value_when_given;
+      },
+      help);
+  return Bind(option, field, sizeof(bool));
+}
+
+CLI::Option* CommandLine::AddThreeArguments(const std::string& flag,
+                                            Eigen::Vector3d* field,
+                                            const std::string& help) {
+  CLI::Option* option = app_.add_option_function<std::vector<double>>(
+      flag,
+      [field](const std::vector<double>& values) {
+        *field = Eigen::Vector3d(values[0], values[1], values[2]);
+      },
+      help);
+  option->expected(3);
+  option->default_str(
+      "[" +
+      JoinWithCommas(std::vector<double>{field->x(), field->y(), field->z()}) +
+      "]");
+  return Bind(option, field, sizeof(Eigen::Vector3d));
+}
+
 }  // namespace uw

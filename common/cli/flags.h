@@ -49,6 +49,25 @@ class CommandLine {
   CLI::Option* Add(const std::string& flag, std::vector<std::string>* field,
                    const std::string& help);
 
+  // N comma-separated integers into N fields ("--imagersize 640,480" into
+  // a width and a height); `form` names them for the message
+  // ("WIDTH,HEIGHT"). The fields' values before parsing are the default.
+  CLI::Option* AddIntegers(const std::string& flag,
+                           const std::vector<int*>& fields,
+                           const std::string& form, const std::string& help);
+
+  // A switch, as mrcal's and most tools' --skip-... flags: given without a
+  // value, it sets `*field` to `value_when_given` (--skip_regularization
+  // clears `regularization`); absent or "=false", it leaves the field.
+  CLI::Option* AddSwitch(const std::string& flag, bool* field,
+                         bool value_when_given, const std::string& help);
+
+  // x y z as three arguments ("--colour 1 0 0"), for flags that have always
+  // taken them so; CLI11 converts them (a word is a parse error).
+  CLI::Option* AddThreeArguments(const std::string& flag,
+                                 Eigen::Vector3d* field,
+                                 const std::string& help);
+
   // A value with its own reader and writer: an enum by name, "auto or a
   // number". `parse` may throw uw::Error naming the flag (exit code 1, as
   // for any bad input); `format` gives --help's default.
