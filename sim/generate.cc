@@ -10,6 +10,7 @@
 #include "common/mesh/ray_caster.h"
 #include "common/util/error.h"
 #include "common/util/file.h"
+#include "common/util/json_fields.h"
 #include "laserscale/laser_setup.h"
 #include "sim/laser_images.h"
 #include "sim/rig.h"
@@ -187,11 +188,7 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
       {"images", shots_truth}};
 
   nlohmann::json sim_json = config;
-  nlohmann::json biases = nlohmann::json::array();
-  for (const Eigen::Vector3d& bias : summary.dive_biases) {
-    biases.push_back({bias.x(), bias.y(), bias.z()});
-  }
-  sim_json["truth"] = {{"dive_biases_m", biases},
+  sim_json["truth"] = {{"dive_biases_m", ToJson(summary.dive_biases)},
                        {"num_images", all_images.size()},
                        {"num_laser_images", shots.size()},
                        {"num_triangles", summary.num_triangles}};

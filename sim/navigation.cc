@@ -70,11 +70,7 @@ void to_json(nlohmann::json& json, const NavigationOptions& options) {
   for (const auto& [name, field] : Fields()) json[name] = options.*field;
   // Written only when set, so that sim.json without it is unchanged.
   if (!options.dive_biases_m.empty()) {
-    nlohmann::json biases = nlohmann::json::array();
-    for (const Eigen::Vector3d& bias : options.dive_biases_m) {
-      biases.push_back(ToJson(bias));
-    }
-    json["dive_biases_m"] = biases;
+    json["dive_biases_m"] = ToJson(options.dive_biases_m);
   }
 }
 

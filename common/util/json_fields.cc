@@ -16,6 +16,12 @@ nlohmann::json ToJson(const Eigen::Matrix3d& value) {
   return rows;
 }
 
+nlohmann::json ToJson(const std::vector<Eigen::Vector3d>& values) {
+  nlohmann::json array = nlohmann::json::array();
+  for (const Eigen::Vector3d& value : values) array.push_back(ToJson(value));
+  return array;
+}
+
 nlohmann::json ParseJsonText(const std::string& text,
                              const std::string& where) {
   try {

@@ -166,5 +166,15 @@ TEST(JsonFields, OtherTypesUseTheirFromJson) {
   ExpectErrorContaining([&] { fields.Read("bad", &bad); }, "x.bad: ");
 }
 
+TEST(JsonFields, VectorListsWrittenByToJsonReadBack) {
+  const std::vector<Eigen::Vector3d> biases = {{1, 0, 0.25}, {0, -2, 0}};
+  const nlohmann::json json = {{"biases", ToJson(biases)}};
+  EXPECT_EQ(json.dump(), R"({"biases":[[1.0,0.0,0.25],[0.0,-2.0,0.0]]})");
+  Sample sample;
+  ReadSample(json, &sample);
+  EXPECT_EQ(sample.biases, biases);
+  EXPECT_EQ(ToJson(std::vector<Eigen::Vector3d>()), nlohmann::json::array());
+}
+
 }  // namespace
 }  // namespace uw
