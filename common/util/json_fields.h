@@ -4,6 +4,22 @@
 // it and the keys that are valid; a value of the wrong type is an error
 // naming its path (`lasers.optics.waist_radius_m: expected a number, got
 // "big"`).
+//
+// One way to convert each kind of thing:
+//  - an options struct that is a section of an options file (sim.json's
+//    world_options, survey_options, render, ...) has nlohmann's pair beside
+//    it, `to_json(json&, const X&)` writing every field and `from_json(const
+//    json&, X&)` reading through JsonFields, so that sections nest
+//    (`{"render", config.render}`, `fields.Read("render", &config.render)`)
+//    and a file may leave out what keeps its default; a struct that is only
+//    ever a part of such a section (world options' relief, rocks) is read in
+//    place with `fields.Section(...)`, so that its errors carry its parent's
+//    path (`world options: vent.ground_relief`);
+//  - anything else, a value inside a file (vectors, cameras, poses, lasers)
+//    or a document that is only written (reports), has free functions:
+//    `ToJson(x)` or `XJson(x)` returning the JSON and `XFromJson(json,
+//    where)` reading it, as its reader needs to name where in its file the
+//    value sits ("rig.cameras[1].camera"), which from_json cannot be told.
 #pragma once
 
 #include <array>
@@ -23,6 +39,8 @@ namespace uw {
 nlohmann::json ToJson(const Eigen::Vector3d& value);
 // A 3x3 matrix as an array of its rows.
 nlohmann::json ToJson(const Eigen::Matrix3d& value);
+// An array of [x, y, z], as Read reads it back.
+nlohmann::json ToJson(const std::vector<Eigen::Vector3d>& values);
 
 // Parses a file's text; a syntax error or a number out of range (1e999)
 // names `where` and the position.
