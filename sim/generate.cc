@@ -2,6 +2,7 @@
 
 #include <memory>
 
+#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "colmap_plugins/scene/model_io.h"
@@ -9,6 +10,7 @@
 #include "common/mesh/ray_caster.h"
 #include "common/util/error.h"
 #include "common/util/file.h"
+#include "common/util/json_fields.h"
 #include "laserscale/laser_setup.h"
 #include "sim/laser_images.h"
 #include "sim/rig.h"
@@ -25,25 +27,23 @@ PendingFile TextFile(const fs::path& path, std::string content) {
 }
 
 std::string RefImagesText(const std::vector<SurveyStation>& stations) {
-  std::ostringstream text;
-  text.precision(17);
+  std::string text;
   for (const SurveyStation& station : stations) {
     const Eigen::Vector3d centre = station.cam_from_world.Inverse().translation;
-    text << station.image_name << " " << centre.x() << " " << centre.y() << " "
-         << centre.z() << "\n";
+    text += fmt::format("{} {:.17g} {:.17g} {:.17g}\n", station.image_name,
+                        centre.x(), centre.y(), centre.z());
   }
-  return text.str();
+  return text;
 }
 
 std::string ImageTimesCsv(const std::vector<SurveyStation>& stations) {
-  std::ostringstream text;
-  text.precision(17);
-  text << "# uwsim image times: seconds since the survey's start\n"
-       << "image_name,time\n";
+  std::string text =
+      "# uwsim image times: seconds since the survey's start\n"
+      "image_name,time\n";
   for (const SurveyStation& station : stations) {
-    text << station.image_name << "," << station.time_s << "\n";
+    text += fmt::format("{},{:.17g}\n", station.image_name, station.time_s);
   }
-  return text.str();
+  return text;
 }
 
 // Camera k's images are images[k]; cameras[k] gets camera_id k + 1.
@@ -69,79 +69,6 @@ Reconstruction TrueModel(
 }
 
 }  // namespace
-
-Camera SimConfig::DefaultCamera() {
-  Camera camera;
-  camera.camera_id = 1;
-  camera.model_id = CameraModelId::kSimpleRadial;
-  camera.width = 1024;
-  camera.height = 768;
-  camera.params = {850.0, 512.0, 384.0, -0.04};
-  return camera;
-}
-
-void SimConfig::Check() const {
-  CheckCameraModelParams(camera.model_id, camera.params.size());
-  if (camera.width == 0 || camera.height == 0 || camera.width > 20000 ||
-      camera.height > 20000) {
-    throw ErrorAt("camera size ", camera.width, " x ", camera.height,
-                  " is out of range (1 to 20000 pixels)");
-  }
-  for (const double param : camera.params) {
-    if (!std::isfinite(param))
-      throw ErrorAt("camera parameters must be finite");
-  }
-  world_options.Check();
-  survey_options.Check();
-  navigation.Check();
-  navigation.CheckNumDives(
-      survey == SurveyKind::kMultiDive ? survey_options.num_dives : 1);
-  render.Check();
-  lasers.Check();
-  rig.Check();
-}
-
-void to_json(nlohmann::json& json, const SimConfig& config) {
-  json = {{"world", WorldKindName(config.world)},
-          {"survey", SurveyKindName(config.survey)},
-          {"seed", config.seed},
-          {"camera", CameraJson(config.camera)},
-          {"rig", config.rig},
-          {"world_options", config.world_options},
-          {"survey_options", config.survey_options},
-          {"navigation", config.navigation},
-          {"render", config.render},
-          {"lasers", config.lasers}};
-}
-
-void from_json(const nlohmann::json& json, SimConfig& config) {
-  for (const auto& [key, value] : json.items()) {
-    if (key == "world") {
-      config.world = WorldKindFromName(value.get<std::string>());
-    } else if (key == "survey") {
-      config.survey = SurveyKindFromName(value.get<std::string>());
-    } else if (key == "seed") {
-      config.seed = value.get<uint64_t>();
-    } else if (key == "camera") {
-      config.camera = CameraFromJson(value, "camera");
-      config.camera.camera_id = 1;
-    } else if (key == "rig") {
-      value.get_to(config.rig);
-    } else if (key == "world_options") {
-      value.get_to(config.world_options);
-    } else if (key == "survey_options") {
-      value.get_to(config.survey_options);
-    } else if (key == "navigation") {
-      value.get_to(config.navigation);
-    } else if (key == "render") {
-      value.get_to(config.render);
-    } else if (key == "lasers") {
-      value.get_to(config.lasers);
-    } else {
-      throw ErrorAt("unknown configuration section '", key, "'");
-    }
-  }
-}
 
 GenerateSummary Generate(const SimConfig& config, const fs::path& out,
                          const std::function<void(size_t, size_t)>& progress) {
@@ -261,11 +188,7 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
       {"images", shots_truth}};
 
   nlohmann::json sim_json = config;
-  nlohmann::json biases = nlohmann::json::array();
-  for (const Eigen::Vector3d& bias : summary.dive_biases) {
-    biases.push_back({bias.x(), bias.y(), bias.z()});
-  }
-  sim_json["truth"] = {{"dive_biases_m", biases},
+  sim_json["truth"] = {{"dive_biases_m", ToJson(summary.dive_biases)},
                        {"num_images", all_images.size()},
                        {"num_laser_images", shots.size()},
                        {"num_triangles", summary.num_triangles}};

@@ -8,37 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "colmap_plugins/scene/model.h"
-#include "sim/laser.h"
-#include "sim/navigation.h"
-#include "sim/renderer.h"
-#include "sim/rig.h"
-#include "sim/survey.h"
-#include "sim/world.h"
+#include "sim/sim_config.h"
 
 namespace uw::sim {
-
-// Every parameter of a simulation; sim.json in the output records it whole.
-struct SimConfig {
-  WorldKind world = WorldKind::kSeafloor;
-  SurveyKind survey = SurveyKind::kLawnmower;
-  uint64_t seed = 1;
-  Camera camera = DefaultCamera();
-  WorldOptions world_options;
-  SurveyOptions survey_options;
-  NavigationOptions navigation;
-  RenderOptions render;
-  LaserOptions lasers;
-  RigOptions rig;  // more cameras besides `camera`
-
-  // 1024 x 768 SIMPLE_RADIAL with a mild barrel distortion.
-  static Camera DefaultCamera();
-  void Check() const;
-};
-void to_json(nlohmann::json& json, const SimConfig& config);
-// Reads the sections present ("world", "survey", "camera", ...), keeping
-// defaults for the rest; unknown keys are errors.
-void from_json(const nlohmann::json& json, SimConfig& config);
 
 struct GenerateSummary {
   size_t num_images = 0;        // survey images of every camera

@@ -136,15 +136,11 @@ void from_json(const nlohmann::json& json, LaserOptions& options) {
     }
   }
   fields.Read("colour", &options.colour);
-  nlohmann::json optics;
-  fields.Read("optics", &optics);
-  if (!optics.is_null()) {
-    JsonFields optics_fields(optics, "lasers.optics");
-    optics_fields.Read("waist_radius_m", &options.optics.waist_radius_m);
-    optics_fields.Read("divergence_mrad", &options.optics.divergence_mrad);
-    optics_fields.Read("peak_level", &options.optics.peak_level);
-    optics_fields.RejectUnknown();
-  }
+  fields.Section("optics", [&](JsonFields& optics) {
+    optics.Read("waist_radius_m", &options.optics.waist_radius_m);
+    optics.Read("divergence_mrad", &options.optics.divergence_mrad);
+    optics.Read("peak_level", &options.optics.peak_level);
+  });
   fields.Read("every_nth_image", &options.every_nth_image);
   fields.Read("placement", &options.placement);
   fields.Read("auxiliary", &options.auxiliary);

@@ -3,7 +3,8 @@
 #include <cmath>
 #include <map>
 #include <random>
-#include <sstream>
+
+#include <fmt/format.h>
 
 #include "common/util/error.h"
 #include "common/util/json_fields.h"
@@ -69,39 +70,16 @@ void to_json(nlohmann::json& json, const NavigationOptions& options) {
   for (const auto& [name, field] : Fields()) json[name] = options.*field;
   // Written only when set, so that sim.json without it is unchanged.
   if (!options.dive_biases_m.empty()) {
-    nlohmann::json biases = nlohmann::json::array();
-    for (const Eigen::Vector3d& bias : options.dive_biases_m) {
-      biases.push_back(ToJson(bias));
-    }
-    json["dive_biases_m"] = biases;
+    json["dive_biases_m"] = ToJson(options.dive_biases_m);
   }
 }
 
 void from_json(const nlohmann::json& json, NavigationOptions& options) {
-  for (const auto& [key, value] : json.items()) {
-    if (key == "dive_biases_m") {
-      if (!value.is_array()) {
-        throw ErrorAt("navigation.dive_biases_m: expected one [x, y, z] ",
-                      "per dive, got ", value.dump());
-      }
-      options.dive_biases_m.clear();
-      for (const nlohmann::json& bias : value) {
-        const nlohmann::json wrapped = {{"dive_biases_m", bias}};
-        Eigen::Vector3d read;
-        JsonFields(wrapped, "navigation").Read("dive_biases_m", &read);
-        options.dive_biases_m.push_back(read);
-      }
-      continue;
-    }
-    bool known = false;
-    for (const auto& [name, field] : Fields()) {
-      if (key == name) {
-        options.*field = value.get<double>();
-        known = true;
-      }
-    }
-    if (!known) throw ErrorAt("unknown navigation option '", key, "'");
-  }
+  JsonFields fields(json, "navigation");
+  for (const auto& [name, field] : Fields())
+    fields.Read(name, &(options.*field));
+  fields.Read("dive_biases_m", &options.dive_biases_m);
+  fields.RejectUnknown();
 }
 
 std::vector<NavigationRecord> TrueNavigation(
@@ -206,27 +184,33 @@ std::vector<NavigationRecord> NoisyNavigation(
 
 std::string NavigationCsv(const std::vector<NavigationRecord>& records,
                           double site_depth_m) {
-  std::ostringstream csv;
-  csv.imbue(std::locale::classic());
-  csv.precision(17);
-  csv << "# uwsim navigation: vehicle position x,y,z in m in the site's local "
-         "East-North-Up frame whose origin is "
-      << site_depth_m << " m deep (depth = " << site_depth_m
-      << " - z); roll,pitch,yaw in deg with world_from_vehicle = "
-         "Rz(yaw)*Ry(pitch)*Rx(roll), vehicle x forward, y left, z up; time "
-         "in s; std_* are 1-sigma\n"
-      << "image_name,time,dive,x,y,z,roll,pitch,yaw,std_x,std_y,std_z,"
-         "std_roll,std_pitch,std_yaw\n";
+  std::string csv = fmt::format(
+      "# uwsim navigation: vehicle position x,y,z in m in the site's local "
+      "East-North-Up frame whose origin is {0:.17g} m deep (depth = {0:.17g} "
+      "- z); roll,pitch,yaw in deg with world_from_vehicle = "
+      "Rz(yaw)*Ry(pitch)*Rx(roll), vehicle x forward, y left, z up; time in "
+      "s; std_* are 1-sigma\n"
+      "image_name,time,dive,x,y,z,roll,pitch,yaw,std_x,std_y,std_z,"
+      "std_roll,std_pitch,std_yaw\n",
+      site_depth_m);
   const double to_deg = 180.0 / M_PI;
   for (const NavigationRecord& record : records) {
-    csv << record.image_name << "," << record.time_s << "," << record.dive;
-    for (int k = 0; k < 3; ++k) csv << "," << record.position(k);
-    for (int k = 0; k < 3; ++k) csv << "," << record.rpy(k) * to_deg;
-    for (int k = 0; k < 3; ++k) csv << "," << record.position_sigma(k);
-    for (int k = 0; k < 3; ++k) csv << "," << record.rpy_sigma(k) * to_deg;
-    csv << "\n";
+    csv += fmt::format("{},{:.17g},{}", record.image_name, record.time_s,
+                       record.dive);
+    for (int k = 0; k < 3; ++k)
+      csv += fmt::format(",{:.17g}", record.position(k));
+    for (int k = 0; k < 3; ++k) {
+      csv += fmt::format(",{:.17g}", record.rpy(k) * to_deg);
+    }
+    for (int k = 0; k < 3; ++k) {
+      csv += fmt::format(",{:.17g}", record.position_sigma(k));
+    }
+    for (int k = 0; k < 3; ++k) {
+      csv += fmt::format(",{:.17g}", record.rpy_sigma(k) * to_deg);
+    }
+    csv += "\n";
   }
-  return csv.str();
+  return csv;
 }
 
 }  // namespace uw::sim

@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <optional>
 #include <random>
-#include <sstream>
 
+#include <fmt/format.h>
 #include <Eigen/Geometry>
 
 #include "colmap_plugins/nav/camera_mount.h"
@@ -194,18 +193,7 @@ void from_json(const nlohmann::json& json, SurveyOptions& options) {
   fields.Read("views_step_deg", &options.views_step_deg);
   fields.Read("views_normal_radius_m", &options.views_normal_radius_m);
   // null, as written when unset, unsets the target.
-  nlohmann::json target = options.views_target.has_value()
-                              ? ToJson(*options.views_target)
-                              : nlohmann::json();
-  fields.Read("views_target", &target);
-  if (target.is_null()) {
-    options.views_target.reset();
-  } else {
-    const nlohmann::json wrapped = {{"views_target", target}};
-    Eigen::Vector3d value;
-    JsonFields(wrapped, "survey_options").Read("views_target", &value);
-    options.views_target = value;
-  }
+  fields.Read("views_target", &options.views_target);
   fields.Read("views_jitter", &options.views_jitter);
   fields.RejectUnknown();
 }
@@ -297,9 +285,7 @@ class StationList {
     }
 
     SurveyStation station;
-    std::ostringstream name;
-    name << std::setw(5) << std::setfill('0') << stations_.size();
-    station.image_name = name.str();
+    station.image_name = fmt::format("{:05d}", stations_.size());
     station.time_s = time_;
     station.dive = dive;
     station.pass = pass;
@@ -513,9 +499,8 @@ void FlyVideo(const World& world, const SurveyFrame& frame,
 }
 
 std::string FormatPoint(const Eigen::Vector3d& point) {
-  std::ostringstream text;
-  text << "(" << point.x() << ", " << point.y() << ", " << point.z() << ")";
-  return text.str();
+  return fmt::format("({:.6g}, {:.6g}, {:.6g})", point.x(), point.y(),
+                     point.z());
 }
 
 struct ViewTarget {

@@ -159,6 +159,42 @@ TEST(CommandLine, ReadersNameTheFlag) {
       "--size must be WIDTH,HEIGHT, got '640x480'");
 }
 
+// Flags that override another source only when given.
+struct OverrideOptions {
+  std::optional<uint64_t> seed;
+  std::optional<int> limit;
+  void Check() const {}
+};
+void AddOverrideFlags(CommandLine* cli, OverrideOptions* options) {
+  cli->Add("--seed", &options->seed, "Seed", std::optional<uint64_t>(1));
+  cli->Add("--limit", &options->limit, "Limit");
+}
+OverrideOptions last_override;
+void RunOverride(const OverrideOptions& options) { last_override = options; }
+
+TEST(CommandLine, OptionalFlagsAreSetOnlyWhenGiven) {
+  const Subcommand command = MakeSubcommand<OverrideOptions>(
+      "override", "", "", AddOverrideFlags, RunOverride);
+  last_override = {};
+  ASSERT_EQ(RunCommandLine(command, {}), 0);
+  EXPECT_FALSE(last_override.seed.has_value());
+  EXPECT_FALSE(last_override.limit.has_value());
+  ASSERT_EQ(RunCommandLine(command, {"--seed", "7", "--limit", "-3"}), 0);
+  EXPECT_EQ(last_override.seed, std::optional<uint64_t>(7));
+  EXPECT_EQ(last_override.limit, std::optional<int>(-3));
+  EXPECT_EQ(RunCommandLine(command, {"--seed", "x"}), 2);
+  EXPECT_EQ(RunCommandLine(command, {"--limit", "1.5"}), 2);
+  EXPECT_TRUE(UnboundFlags(command).empty());
+  // --help shows the value that applies without the flag, if given one.
+  CommandLine cli("prog override", "");
+  OverrideOptions options;
+  AddOverrideFlags(&cli, &options);
+  const std::string help = cli.app().help();
+  EXPECT_NE(help.find("--seed UINT=1 "), std::string::npos) << help;
+  EXPECT_NE(help.find("--limit INT "), std::string::npos) << help;
+  EXPECT_EQ(help.find("--limit INT="), std::string::npos) << help;
+}
+
 TEST(UnboundFlags, EveryFlagOfABoundCommandWritesItsOwnField) {
   EXPECT_TRUE(UnboundFlags(Example()).empty());
 }

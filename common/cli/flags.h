@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,20 @@ class CommandLine {
   CLI::Option* AddThreeArguments(const std::string& flag,
                                  Eigen::Vector3d* field,
                                  const std::string& help);
+
+  // A value that overrides another source (a configuration file) only
+  // when the flag is given: the field stays std::nullopt without it. CLI11
+  // parses T, as for Add above; --help shows `shown` as the default, the
+  // value that applies without the flag, if there is one to show.
+  template <typename T>
+  CLI::Option* Add(const std::string& flag, std::optional<T>* field,
+                   const std::string& help,
+                   const std::optional<T>& shown = std::nullopt) {
+    CLI::Option* option = app_.add_option_function<T>(
+        flag, [field](const T& value) { *field = value; }, help);
+    if (shown) option->default_str(CLI::detail::to_string(*shown));
+    return Bind(option, field, sizeof(*field));
+  }
 
   // A value with its own reader and writer: an enum by name, "auto or a
   // number". `parse` may throw uw::Error naming the flag (exit code 1, as

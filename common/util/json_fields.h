@@ -1,11 +1,33 @@
-// Reading and writing options structs as JSON (uwsim's sim.json, lasers.json
-// and
-// --config): every key read is known, anything else is an error naming it.
+// Reading and writing options structs and uwmetric files as JSON (uwsim's
+// sim.json and --config, lasers.json, rig.json, spots.json, ...): the one
+// strict reader. Every key read is known, anything else is an error naming
+// it and the keys that are valid; a value of the wrong type is an error
+// naming its path (`lasers.optics.waist_radius_m: expected a number, got
+// "big"`).
+//
+// One way to convert each kind of thing:
+//  - an options struct that is a section of an options file (sim.json's
+//    world_options, survey_options, render, ...) has nlohmann's pair beside
+//    it, `to_json(json&, const X&)` writing every field and `from_json(const
+//    json&, X&)` reading through JsonFields, so that sections nest
+//    (`{"render", config.render}`, `fields.Read("render", &config.render)`)
+//    and a file may leave out what keeps its default; a struct that is only
+//    ever a part of such a section (world options' relief, rocks) is read in
+//    place with `fields.Section(...)`, so that its errors carry its parent's
+//    path (`world options: vent.ground_relief`);
+//  - anything else, a value inside a file (vectors, cameras, poses, lasers)
+//    or a document that is only written (reports), has free functions:
+//    `ToJson(x)` or `XJson(x)` returning the JSON and `XFromJson(json,
+//    where)` reading it, as its reader needs to name where in its file the
+//    value sits ("rig.cameras[1].camera"), which from_json cannot be told.
 #pragma once
 
-#include <algorithm>
-#include <set>
+#include <array>
+#include <limits>
+#include <optional>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
@@ -14,70 +36,54 @@
 
 namespace uw {
 
-inline nlohmann::json ToJson(const Eigen::Vector3d& value) {
-  return nlohmann::json::array({value.x(), value.y(), value.z()});
-}
-
+nlohmann::json ToJson(const Eigen::Vector3d& value);
 // A 3x3 matrix as an array of its rows.
-inline nlohmann::json ToJson(const Eigen::Matrix3d& value) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (int r = 0; r < 3; ++r) {
-    rows.push_back(ToJson(Eigen::Vector3d(value.row(r).transpose())));
-  }
-  return rows;
-}
+nlohmann::json ToJson(const Eigen::Matrix3d& value);
+// An array of [x, y, z], as Read reads it back.
+nlohmann::json ToJson(const std::vector<Eigen::Vector3d>& values);
 
 // Parses a file's text; a syntax error or a number out of range (1e999)
 // names `where` and the position.
-inline nlohmann::json ParseJsonText(const std::string& text,
-                                    const std::string& where) {
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& error) {
-    throw ErrorAt(where, ": ", error.what());
-  }
-}
+nlohmann::json ParseJsonText(const std::string& text, const std::string& where);
 
-// Reads the keys of one options object and rejects the rest, naming them.
+// Reads the keys of one JSON object into the fields of an options struct:
+//
+//   JsonFields fields(json, "lasers");
+//   fields.Read("every_nth_image", &options.every_nth_image);
+//   fields.Section("optics", [&](JsonFields& optics) { ... });
+//   fields.RejectUnknown();
+//
+// A key absent from the JSON leaves its field as it was (its default).
+// Errors name `what`, the key and the offending value.
 class JsonFields {
  public:
-  JsonFields(const nlohmann::json& json, std::string what)
-      : json_(json), what_(std::move(what)) {
-    if (!json_.is_object()) {
-      throw ErrorAt(what_, ": expected a JSON object, got ", json_.dump());
-    }
-  }
+  // `what` names the object in messages ("lasers", "world options:
+  // seafloor", "rig.json: cameras[1]"); throws unless `json` is an object.
+  JsonFields(const nlohmann::json& json, std::string what);
 
+  // Reads `key` if present (returns whether it was). Numbers must be
+  // numbers, integers integers in the field's range, booleans booleans,
+  // strings strings, vectors arrays of 3 numbers; any other type is read by
+  // nlohmann::json's from_json (an options struct's own, for a section that
+  // names its errors itself).
+  bool Read(const std::string& key, double* value);
+  bool Read(const std::string& key, bool* value);
+  bool Read(const std::string& key, std::string* value);
+  bool Read(const std::string& key, std::vector<double>* value);
+  bool Read(const std::string& key, std::array<double, 3>* value);
+  bool Read(const std::string& key, Eigen::Vector3d* value);
+  // null unsets it.
+  bool Read(const std::string& key, std::optional<Eigen::Vector3d>* value);
+  // An array of [x, y, z]; replaces the whole vector.
+  bool Read(const std::string& key, std::vector<Eigen::Vector3d>* value);
+  // An array of 3 rows of 3 numbers.
+  bool Read(const std::string& key, Eigen::Matrix3d* value);
   template <typename T>
-  void Read(const std::string& key, T* value) {
-    known_.insert(key);
-    const auto it = json_.find(key);
-    if (it == json_.end()) return;
-    try {
-      it->get_to(*value);
-    } catch (const nlohmann::json::exception& error) {
-      throw ErrorAt(what_, ".", key, ": ", error.what());
-    }
-  }
-
-  void Read(const std::string& key, Eigen::Vector3d* value) {
-    known_.insert(key);
-    const auto it = json_.find(key);
-    if (it == json_.end()) return;
-    *value = Vector3(*it, key);
-  }
-
-  void Read(const std::string& key, Eigen::Matrix3d* value) {
-    known_.insert(key);
-    const auto it = json_.find(key);
-    if (it == json_.end()) return;
-    if (!it->is_array() || it->size() != 3) {
-      throw ErrorAt(what_, ".", key,
-                    ": expected an array of 3 rows of 3 numbers, got ",
-                    it->dump());
-    }
-    for (int r = 0; r < 3; ++r) value->row(r) = Vector3((*it)[r], key);
-  }
+  std::enable_if_t<std::is_integral_v<T> && !std::is_same_v<T, bool>, bool>
+  Read(const std::string& key, T* value);
+  template <typename T>
+  std::enable_if_t<!std::is_arithmetic_v<T>, bool> Read(const std::string& key,
+                                                        T* value);
 
   // Like Read, for a key that must be present.
   template <typename T>
@@ -88,43 +94,89 @@ class JsonFields {
     Read(key, value);
   }
 
-  // A uwmetric file's "format" and "version": both required and ours.
-  void RequireFormat(const std::string& format, int version) {
-    std::string read_format;
-    int read_version = 0;
-    Require("format", &read_format);
-    Require("version", &read_version);
-    if (read_format != format || read_version != version) {
-      throw ErrorAt(what_, ": expected format \"", format, "\" version ",
-                    version, ", got \"", read_format, "\" version ",
-                    read_version);
-    }
+  // A nested object: if `key` is present, `read` gets its fields, named
+  // `what.key` (or `name`), and then its unknown keys are rejected.
+  template <typename ReadSection>
+  bool Section(const std::string& key, ReadSection read) {
+    return Section(key, what_ + "." + key, read);
+  }
+  template <typename ReadSection>
+  bool Section(const std::string& key, const std::string& name,
+               ReadSection read) {
+    const nlohmann::json* item = Find(key);
+    if (item == nullptr) return false;
+    JsonFields section(*item, name);
+    read(section);
+    section.RejectUnknown();
+    return true;
   }
 
-  void RejectUnknown() const {
-    for (const auto& item : json_.items()) {
-      if (known_.count(item.key()) == 0) {
-        throw ErrorAt(what_, ": unknown key \"", item.key(), "\"");
-      }
-    }
-  }
+  // A uwmetric file's "format" and "version": both required and ours.
+  void RequireFormat(const std::string& format, int version);
+
+  // Called once every field is read: a key nothing asked for is a typo or a
+  // parameter this version does not have.
+  void RejectUnknown() const;
 
  private:
-  Eigen::Vector3d Vector3(const nlohmann::json& json,
-                          const std::string& key) const {
-    if (!json.is_array() || json.size() != 3 ||
-        !std::all_of(json.begin(), json.end(),
-                     [](const nlohmann::json& x) { return x.is_number(); })) {
-      throw ErrorAt(what_, ".", key, ": expected an array of 3 numbers, got ",
-                    json.dump());
-    }
-    return {json[0].get<double>(), json[1].get<double>(),
-            json[2].get<double>()};
-  }
+  // The value at `key`, or nullptr; `key` becomes a valid key.
+  const nlohmann::json* Find(const std::string& key);
+  [[noreturn]] void Fail(const std::string& key, const std::string& expected,
+                         const nlohmann::json& value) const;
+  Eigen::Vector3d Vector3(const nlohmann::json& value,
+                          const std::string& key) const;
 
   const nlohmann::json& json_;
   std::string what_;
-  std::set<std::string> known_;
+  // In the order they were asked for, as the error lists them.
+  std::vector<std::string> known_;
 };
+
+template <typename T>
+std::enable_if_t<std::is_integral_v<T> && !std::is_same_v<T, bool>, bool>
+JsonFields::Read(const std::string& key, T* value) {
+  const nlohmann::json* item = Find(key);
+  if (item == nullptr) return false;
+  if (!item->is_number_integer()) Fail(key, "an integer", *item);
+  // Compared as the magnitudes of the value and of T's range, whichever
+  // of nlohmann's two integer types holds it.
+  constexpr uint64_t kMax =
+      static_cast<uint64_t>(std::numeric_limits<T>::max());
+  bool fits = false;
+  if (item->is_number_unsigned()) {
+    fits = item->get<uint64_t>() <= kMax;
+  } else {
+    const int64_t wide = item->get<int64_t>();
+    fits =
+        wide >= 0
+            ? static_cast<uint64_t>(wide) <= kMax
+            : std::is_signed_v<T> &&
+                  wide >= static_cast<int64_t>(std::numeric_limits<T>::min());
+  }
+  if (!fits) {
+    Fail(key,
+         std::is_same_v<T, int>
+             ? std::string("an integer in the range of int")
+             : "an integer in [" +
+                   std::to_string(std::numeric_limits<T>::min()) + ", " +
+                   std::to_string(std::numeric_limits<T>::max()) + "]",
+         *item);
+  }
+  *value = item->get<T>();
+  return true;
+}
+
+template <typename T>
+std::enable_if_t<!std::is_arithmetic_v<T>, bool> JsonFields::Read(
+    const std::string& key, T* value) {
+  const nlohmann::json* item = Find(key);
+  if (item == nullptr) return false;
+  try {
+    item->get_to(*value);
+  } catch (const nlohmann::json::exception& error) {
+    throw ErrorAt(what_, ".", key, ": ", error.what());
+  }
+  return true;
+}
 
 }  // namespace uw
