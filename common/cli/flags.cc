@@ -126,7 +126,7 @@ CLI::Option* CommandLine::AddIntegers(const std::string& flag,
       help);
   std::vector<int> defaults;
   for (const int* field : fields) defaults.push_back(*field);
-  option->default_str(JoinWithCommas(defaults));
+  option->default_str(fmt::format("{}", fmt::join(defaults, ",")));
   for (int* field : fields) Bind(option, field, sizeof(int));
   return option;
 }
@@ -153,10 +153,8 @@ CLI::Option* CommandLine::AddThreeArguments(const std::string& flag,
       },
       help);
   option->expected(3);
-  option->default_str(
-      "[" +
-      JoinWithCommas(std::vector<double>{field->x(), field->y(), field->z()}) +
-      "]");
+  option->default_str("[" + JoinNumbers({field->x(), field->y(), field->z()}) +
+                      "]");
   return Bind(option, field, sizeof(Eigen::Vector3d));
 }
 
