@@ -15,6 +15,7 @@
 #include "laserscale/exe/commands.h"
 #include "laserscale/laser_setup.h"
 #include "laserscale/spot_detector.h"
+#include "laserscale/spot_overlay.h"
 #include "laserscale/spots_io.h"
 
 namespace uw {
