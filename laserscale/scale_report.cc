@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "common/util/error.h"
@@ -95,15 +95,11 @@ nlohmann::json CombinedJson(const CombinedScale& c,
 }
 
 std::string Percent(double scale) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%+.3f %%", 100.0 * (scale - 1.0));
-  return text;
+  return fmt::format("{:+.3f} %", 100.0 * (scale - 1.0));
 }
 
 std::string Fixed(double value, int digits = 5) {
-  char text[40];
-  std::snprintf(text, sizeof(text), "%.*f", digits, value);
-  return text;
+  return fmt::format("{:.{}f}", value, digits);
 }
 
 // mean, std, p2.5, p97.5; empty fields without samples.

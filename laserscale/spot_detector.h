@@ -22,91 +22,9 @@
 
 #include "colmap_plugins/scene/model.h"
 #include "laserscale/laser_setup.h"
+#include "laserscale/spot_detector_options.h"
 
 namespace uw {
-
-struct SpotDetectorOptions {
-  // 1. ROI: each beam's points at depths (camera z) from min_range_m to
-  // max_range_m, projected; their bounding box grown by roi_margin_px. A
-  // spot is accepted only within roi_margin_px of that projected segment
-  // (calibration error plus spot radius) and no nearer another beam's,
-  // which also tells the lasers apart.
-  double min_range_m = 1.0;
-  double max_range_m = 6.0;
-  int roi_margin_px = 24;
-
-  // 2-5. Texture removal with the auxiliary image: the ROI is found in it
-  // by FFT normalised cross-correlation within aux_search_px of its place
-  // (the camera moved between the frames), refined by an ECC homography
-  // (at most ecc_iterations), matched per channel by histogram, and
-  // subtracted. Below min_alignment_ncc the texture is not removed in that
-  // ROI (the aux does not show the same scene).
-  bool texture_removal = true;
-  int aux_search_px = 64;
-  double min_alignment_ncc = 0.5;
-  int ecc_iterations = 50;
-
-  // 6. Gaussian low-pass against noise and compression artefacts.
-  double lowpass_sigma_px = 1.0;
-
-  // 7. HSV threshold on the increments over the ROI's median (per channel)
-  // of the texture-removed image (of the image without an aux): V >= the
-  // increments' median + value_threshold_sigmas robust σ (the nominal one
-  // and the Monte Carlo noise in quadrature; and >= min_value levels). The
-  // hue test (within hue_tolerance_deg of the laser colour's hue, red
-  // wrapping at 0/360, for saturation >= min_saturation) is off by default:
-  // in uwsim's water a red laser's green and blue leak outlive its red, so
-  // its spots turn from red at 1.5 m to green at 4 m (docs). On real red
-  // lasers, whose light stays red, 30-40 deg and 0.3 reject other colours.
-  double hue_tolerance_deg = 180.0;
-  double min_saturation = 0.0;
-  double value_threshold_sigmas = 4.0;
-  double min_value = 2.0;
-
-  // 8-9. Opening with a disc of opening_radius_px (removes isolated noise
-  // pixels), 8-connected components of min_area_px to max_area_px pixels;
-  // per ROI the one with the largest summed V on the laser's beam wins.
-  int opening_radius_px = 1;
-  int min_area_px = 3;
-  int max_area_px = 4000;
-
-  // 10-11. The Gaussian is fitted to the channel in which the component is
-  // brightest (V's channel on the spot) over the component grown by
-  // fit_margin_px (its tails and background). Pixels at or above
-  // saturation_level, and their low-passed neighbours, bound the fit
-  // instead of fixing it (censored least squares), so a clipped top still
-  // tells how high the spot is.
-  int fit_margin_px = 3;
-  double saturation_level = 250.0;
-
-  // 12. Centre covariance from the spot's shape, thesis reading: the centre
-  // lies within the top `top_fraction` of the spot's luminance with
-  // probability `confidence`, i.e. Σc = Σb · 2 ln(1 / (1 - top_fraction)) /
-  // (-2 ln(1 - confidence)) = 0.0745 Σb for the thesis's 20 % / 95 %.
-  double top_fraction = 0.20;
-  double confidence = 0.95;
-
-  // LSD-MC (§5.3): iterations with i.i.d. Gaussian noise of noise_sigma
-  // added to each channel of the image around the nominal detection (0:
-  // the nominal detection alone, its covariance Σc); stable iff detected in
-  // at least min_detection_rate of them (thesis: 80 %).
-  int monte_carlo_iterations = 100;
-  double min_detection_rate = 0.80;
-
-  // Per-pixel noise σ in levels; < 0: estimated (§5.4) from the image and
-  // its auxiliary (robust σ of their aligned difference, with the aux as
-  // noisy as the image when aux_equally_noisy, e.g. consecutive frames, or
-  // noise-free otherwise, e.g. an average of frames), or from the image
-  // alone (robust σ of its second differences) without one.
-  double noise_sigma = -1.0;
-  bool aux_equally_noisy = true;
-
-  // Threads for the ROIs and Monte Carlo iterations (<= 0: all cores). The
-  // result does not depend on it.
-  int num_threads = 0;
-
-  void Check() const;  // throws uw::Error naming the field
-};
 
 struct DetectedSpot {
   std::string laser;  // laser name from the set-up
@@ -150,13 +68,5 @@ std::vector<DetectedSpot> DetectSpots(const cv::Mat& image, const cv::Mat& aux,
 std::vector<DetectedSpot> DetectBrightestPixel(
     const cv::Mat& image, const Camera& camera, const LaserSetup& setup,
     const SpotDetectorOptions& options);
-
-// The image with each stable spot's merged 68 % and 95 % ellipses
-// (Mahalanobis radii 1.510 and 2.448), the iterations' centres faintly, and
-// unstable or undetected lasers marked with their reason; below it a strip
-// of 8x magnified crops around each spot, where sub-pixel ellipses are
-// legible.
-cv::Mat DrawSpotOverlay(const cv::Mat& image,
-                        const std::vector<DetectedSpot>& spots);
 
 }  // namespace uw

@@ -199,6 +199,50 @@ TEST(UnboundFlags, EveryFlagOfABoundCommandWritesItsOwnField) {
   EXPECT_TRUE(UnboundFlags(Example()).empty());
 }
 
+// An optional x,y,z and a repeatable flag with its own reader.
+struct ListOptions {
+  std::optional<Eigen::Vector3d> target;
+  std::vector<int> levels = {0};
+  void Check() const {}
+};
+void AddListFlags(CommandLine* cli, ListOptions* options) {
+  cli->Add("--target", &options->target, "Target");
+  cli->AddRepeated<int>(
+      "--level", &options->levels, "Level, repeatable",
+      [](const std::string& text) {
+        if (text.empty() ||
+            text.find_first_not_of("0123456789") != std::string::npos) {
+          throw ErrorAt("--level: '", text, "' is not a level");
+        }
+        return std::stoi(text);
+      },
+      [](const int& level) { return std::to_string(level); });
+}
+ListOptions last_list;
+void RunList(const ListOptions& options) { last_list = options; }
+
+TEST(CommandLine, OptionalVectorsAndRepeatableFlags) {
+  const Subcommand list =
+      MakeSubcommand<ListOptions>("list", "", "", AddListFlags, RunList);
+  last_list = {};
+  ASSERT_EQ(RunCommandLine(list, {}), 0);
+  EXPECT_FALSE(last_list.target.has_value());
+  EXPECT_EQ(last_list.levels, std::vector<int>{0});
+  ASSERT_EQ(RunCommandLine(
+                list, {"--target", "1,2,3", "--level", "4", "--level", "5"}),
+            0);
+  EXPECT_EQ(last_list.target, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(last_list.levels, (std::vector<int>{4, 5}));
+  EXPECT_EQ(RunCommandLine(list, {"--target", "1,2"}), 1);
+  EXPECT_EQ(RunCommandLine(list, {"--level", "x"}), 1);
+  EXPECT_TRUE(UnboundFlags(list).empty());
+  CommandLine cli("prog list", "");
+  ListOptions options;
+  AddListFlags(&cli, &options);
+  ExpectErrorContaining([&] { cli.app().parse("--target 1,x,3", false); },
+                        "--target: expected three numbers x,y,z, got '1,x,3'");
+}
+
 struct LooseOptions {
   int bound = 0;
   int shared = 0;

@@ -25,6 +25,23 @@ std::string JoinTexts(const std::vector<std::string>& values) {
   return fmt::format("{}", fmt::join(values, ","));
 }
 
+Eigen::Vector3d ParseVector3(const std::string& name, const std::string& text) {
+  const std::vector<std::string> parts = CLI::detail::split(text, ',');
+  Eigen::Vector3d value;
+  for (int k = 0; k < 3; ++k) {
+    if (parts.size() != 3 || !CLI::detail::lexical_cast(parts[k], value(k)) ||
+        !std::isfinite(value(k))) {
+      throw ErrorAt("--", name, ": expected three numbers x,y,z, got '", text,
+                    "'");
+    }
+  }
+  return value;
+}
+
+std::string FormatVector3(const Eigen::Vector3d& value) {
+  return JoinNumbers({value.x(), value.y(), value.z()});
+}
+
 }  // namespace
 
 CommandLine::CommandLine(const std::string& name,
@@ -55,21 +72,23 @@ CLI::Option* CommandLine::Add(const std::string& flag, Eigen::Vector3d* field,
   const std::string name = FlagName(flag);
   CLI::Option* option = Add<Eigen::Vector3d>(
       flag, field, help,
+      [name](const std::string& text) { return ParseVector3(name, text); },
+      FormatVector3);
+  option->type_name("X,Y,Z");
+  return option;
+}
+
+CLI::Option* CommandLine::Add(const std::string& flag,
+                              std::optional<Eigen::Vector3d>* field,
+                              const std::string& help) {
+  const std::string name = FlagName(flag);
+  CLI::Option* option = Add<std::optional<Eigen::Vector3d>>(
+      flag, field, help,
       [name](const std::string& text) {
-        const std::vector<std::string> parts = CLI::detail::split(text, ',');
-        Eigen::Vector3d value;
-        for (int k = 0; k < 3; ++k) {
-          if (parts.size() != 3 ||
-              !CLI::detail::lexical_cast(parts[k], value(k)) ||
-              !std::isfinite(value(k))) {
-            throw ErrorAt("--", name, ": expected three numbers x,y,z, got '",
-                          text, "'");
-          }
-        }
-        return value;
+        return std::optional<Eigen::Vector3d>(ParseVector3(name, text));
       },
-      [](const Eigen::Vector3d& value) {
-        return JoinNumbers({value.x(), value.y(), value.z()});
+      [](const std::optional<Eigen::Vector3d>& value) {
+        return value ? FormatVector3(*value) : std::string();
       });
   option->type_name("X,Y,Z");
   return option;

@@ -44,6 +44,11 @@ class CommandLine {
   CLI::Option* Add(const std::string& flag, Eigen::Vector3d* field,
                    const std::string& help);
 
+  // x,y,z, or nothing given: no value (the field's std::nullopt).
+  CLI::Option* Add(const std::string& flag,
+                   std::optional<Eigen::Vector3d>* field,
+                   const std::string& help);
+
   // Comma-separated lists (CLI11 splits them): "2,3,4", "A,B".
   CLI::Option* Add(const std::string& flag, std::vector<double>* field,
                    const std::string& help);
@@ -95,6 +100,29 @@ class CommandLine {
         help);
     option->default_str(format(*field));
     return Bind(option, field, sizeof(T));
+  }
+
+  // A repeatable flag (--noise 0:0 --noise 0.5:0.25) whose values, each
+  // read by `parse`, replace the default list; `format` writes one item of
+  // --help's default.
+  template <typename T>
+  CLI::Option* AddRepeated(const std::string& flag, std::vector<T>* field,
+                           const std::string& help,
+                           std::function<T(const std::string&)> parse,
+                           std::function<std::string(const T&)> format) {
+    CLI::Option* option = app_.add_option_function<std::vector<std::string>>(
+        flag,
+        [field, parse](const std::vector<std::string>& texts) {
+          field->clear();
+          for (const std::string& text : texts) field->push_back(parse(text));
+        },
+        help);
+    std::string defaults;
+    for (size_t k = 0; k < field->size(); ++k) {
+      defaults += (k > 0 ? " " : "") + format((*field)[k]);
+    }
+    option->default_str(defaults);
+    return Bind(option, field, sizeof(*field));
   }
 
   CLI::App& app() { return app_; }

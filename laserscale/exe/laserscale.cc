@@ -1,11 +1,11 @@
 // laserscale: the metric scale of a COLMAP model, with its confidence
 // interval, from laser-scaler images. Like `colmap`, the first argument
 // names the command and the rest are its flags.
-#include "common/cli/command.h"
-#include "laserscale/exe/commands.h"
+#include "laserscale/exe/laserscale_commands.h"
 
 int main(int argc, char** argv) {
   return uw::DispatchSubcommand(
+      "laserscale",
       "laserscale: the metric scale of a COLMAP model from laser-scaler "
       "images.\n\n"
       "Usage:\n  laserscale <command> [--flag value ...]\n"
@@ -19,18 +19,5 @@ int main(int argc, char** argv) {
       "spots.json --lasers lasers.json --out report\n"
       "  laserscale apply    --input_path sparse/0 --scale "
       "report/scale.json --output_path sparse_metric\n",
-      {
-          {"detect", uw::RunDetect,
-           "find the laser spots in laser images, with their uncertainty"},
-          {"localize", uw::RunLocalize,
-           "localize laser images against a COLMAP model and its database"},
-          {"sparse_surface", uw::RunSparseSurface,
-           "a heightfield mesh from a sparse model, until a dense one exists"},
-          {"estimate", uw::RunEstimate,
-           "the model's scale with its confidence interval (Monte Carlo)"},
-          {"apply", uw::RunApply, "scale a COLMAP model to metres"},
-          {"simulate", uw::RunSimulate,
-           "the thesis's accuracy study of a laser set-up, before a cruise"},
-      },
-      argc, argv);
+      uw::LaserscaleCommands(), argc, argv);
 }
