@@ -5,23 +5,21 @@
 #include <iostream>
 #include <set>
 
-#include "common/util/error.h"
 
 namespace uw {
 namespace {
 
-template <typename Command>
-void PrintUsage(const std::string& usage, const std::vector<Command>& commands,
-                std::ostream& out) {
+void PrintUsage(const std::string& usage,
+                const std::vector<Subcommand>& commands, std::ostream& out) {
   size_t width = 0;
-  for (const Command& command : commands) {
-    width = std::max(width, std::string(command.name).size());
+  for (const Subcommand& command : commands) {
+    width = std::max(width, command.name.size());
   }
   out << usage << "\nCommands:\n";
-  for (const Command& command : commands) {
-    const std::string name = command.name;
-    out << "  " << name << std::string(width + 4 - name.size(), ' ')
-        << command.summary << "\n";
+  for (const Subcommand& command : commands) {
+    out << "  " << command.name
+        << std::string(width + 4 - command.name.size(), ' ') << command.summary
+        << "\n";
   }
 }
 
@@ -29,24 +27,6 @@ bool AsksForHelp(int argc, char** argv) {
   return argc < 2 || std::strcmp(argv[1], "-h") == 0 ||
          std::strcmp(argv[1], "--help") == 0 ||
          std::strcmp(argv[1], "help") == 0;
-}
-
-template <typename Command>
-int Dispatch(const std::string& usage, const std::vector<Command>& commands,
-             int argc, char** argv,
-             const std::function<int(const Command&, int, char**)>& run) {
-  if (AsksForHelp(argc, argv)) {
-    PrintUsage(usage, commands, std::cout);
-    return argc < 2 ? 1 : 0;
-  }
-  for (const Command& command : commands) {
-    if (command.name == std::string(argv[1])) {
-      return run(command, argc - 1, argv + 1);
-    }
-  }
-  std::cerr << "ERROR: unknown command '" << argv[1] << "'\n\n";
-  PrintUsage(usage, commands, std::cerr);
-  return 1;
 }
 
 }  // namespace
@@ -79,37 +59,23 @@ int RunCommand(CLI::App& app, int argc, char** argv,
 int DispatchSubcommand(const std::string& program, const std::string& usage,
                        const std::vector<Subcommand>& commands, int argc,
                        char** argv) {
-  return Dispatch<Subcommand>(
-      usage, commands, argc, argv,
-      [&](const Subcommand& command, int command_argc, char** command_argv) {
-        if (command.legacy_run) {
-          return command.legacy_run(command_argc, command_argv);
-        }
-        CommandLine cli(program + " " + command.name, command.description);
-        const std::function<void()> run = command.define(&cli);
-        return RunCommand(cli.app(), command_argc, command_argv, run);
-      });
-}
-
-int DispatchSubcommand(const std::string& usage,
-                       const std::vector<LegacySubcommand>& commands, int argc,
-                       char** argv) {
-  return Dispatch<LegacySubcommand>(usage, commands, argc, argv,
-                                    [](const LegacySubcommand& command,
-                                       int command_argc, char** command_argv) {
-                                      return command.run(command_argc,
-                                                         command_argv);
-                                    });
-}
-
-bool ParseColmapBool(const std::string& value, const std::string& flag) {
-  if (value == "1" || value == "true") return true;
-  if (value == "0" || value == "false") return false;
-  throw ErrorAt("--", flag, ": expected 0 or 1, got '", value, "'");
+  if (AsksForHelp(argc, argv)) {
+    PrintUsage(usage, commands, std::cout);
+    return argc < 2 ? 1 : 0;
+  }
+  for (const Subcommand& command : commands) {
+    if (command.name == argv[1]) {
+      CommandLine cli(program + " " + command.name, command.description);
+      const std::function<void()> run = command.define(&cli);
+      return RunCommand(cli.app(), argc - 1, argv + 1, run);
+    }
+  }
+  std::cerr << "ERROR: unknown command '" << argv[1] << "'\n\n";
+  PrintUsage(usage, commands, std::cerr);
+  return 1;
 }
 
 std::vector<std::string> UnboundFlags(const Subcommand& command) {
-  if (command.legacy_run) return {"(all: it parses its own flags)"};
   CommandLine cli(command.name, command.description);
   command.define(&cli);
   std::vector<std::string> unbound;

@@ -22,8 +22,6 @@ struct Subcommand {
   // Declares the command's flags on `cli`, bound to an options object that
   // it owns, and returns what runs once they are parsed.
   std::function<std::function<void()>(CommandLine* cli)> define;
-  // Until every command is converted: one that parses its own flags.
-  int (*legacy_run)(int argc, char** argv) = nullptr;
 };
 
 // A command whose flags `add_flags` binds to the fields of an `Options`;
@@ -61,24 +59,6 @@ int RunCommand(CLI::App& app, int argc, char** argv,
 int DispatchSubcommand(const std::string& program, const std::string& usage,
                        const std::vector<Subcommand>& commands, int argc,
                        char** argv);
-
-// Until every command is a Subcommand: a command that parses its own flags.
-struct LegacySubcommand {
-  const char* name;
-  int (*run)(int argc, char** argv);
-  const char* summary;
-};
-inline Subcommand FromLegacy(const LegacySubcommand& legacy) {
-  Subcommand command;
-  command.name = legacy.name;
-  command.summary = legacy.summary;
-  command.legacy_run = legacy.run;
-  return command;
-}
-int DispatchSubcommand(const std::string& usage,
-                       const std::vector<LegacySubcommand>& commands, int argc,
-                       char** argv);
-bool ParseColmapBool(const std::string& value, const std::string& flag);
 
 // The flags of `command` that write no field of its options (or the same
 // bytes as another flag), by name: empty when every flag is bound 1:1.
