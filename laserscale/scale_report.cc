@@ -7,8 +7,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "common/util/csv.h"
 #include "common/util/error.h"
 #include "common/util/file.h"
+#include "common/util/html.h"
 #include "common/util/json_fields.h"
 #include "common/util/plot.h"
 
@@ -107,30 +109,6 @@ std::string SummaryCsv(const SampleSummary& s) {
   if (s.num_samples == 0) return ",,,";
   return Fixed(s.mean, 7) + "," + Fixed(s.std_dev, 7) + "," + Fixed(s.p2_5, 7) +
          "," + Fixed(s.p97_5, 7);
-}
-
-std::string Html(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '&')
-      out += "&amp;";
-    else
-      out += c;
-  }
-  return out;
-}
-
-// A CSV field: quoted when it holds a separator, quote or newline.
-std::string Csv(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (const char c : text)
-    out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
 }
 
 }  // namespace
@@ -316,21 +294,22 @@ void WriteScaleReport(const ModelScaleReport& report,
                "num_invalid\n";
   for (const ImageEstimate& image : report.images) {
     if (!image.result) {
-      images_csv << Csv(image.name) << ",0," << Csv(image.problem)
+      images_csv << CsvField(image.name) << ",0," << CsvField(image.problem)
                  << ",,,,,,0\n";
       continue;
     }
     const ImageScaleResult& r = *image.result;
     const SampleSummary& mc = r.monte_carlo;
-    images_csv << Csv(image.name) << "," << r.accepted << ","
-               << Csv(r.rejection) << ","
+    images_csv << CsvField(image.name) << "," << r.accepted << ","
+               << CsvField(r.rejection) << ","
                << (r.nominal ? Fixed(*r.nominal, 7) : "") << ","
                << SummaryCsv(mc) << "," << mc.num_samples << "\n";
     for (const ItemResult& item : r.items) {
       const SampleSummary& s = item.monte_carlo;
-      items_csv << Csv(image.name) << "," << Csv(item.item.name) << ","
+      items_csv << CsvField(image.name) << "," << CsvField(item.item.name)
+                << ","
                 << (item.nominal.scale ? Fixed(*item.nominal.scale, 7) : "")
-                << "," << Csv(item.nominal.problem) << "," << SummaryCsv(s)
+                << "," << CsvField(item.nominal.problem) << "," << SummaryCsv(s)
                 << "," << item.num_invalid << "\n";
     }
   }
@@ -398,10 +377,10 @@ void WriteScaleReport(const ModelScaleReport& report,
           "<th>MC mean &plusmn; &sigma;</th><th>95 % interval</th><th>status"
           "</th><th>spots</th></tr>\n";
   for (const ImageEstimate& image : report.images) {
-    html << "<tr><td>" << Html(image.name) << "</td>";
+    html << "<tr><td>" << HtmlEscape(image.name) << "</td>";
     if (!image.result) {
       html << "<td></td><td></td><td></td><td class=\"bad\">"
-           << Html(image.problem) << "</td><td></td></tr>\n";
+           << HtmlEscape(image.problem) << "</td><td></td></tr>\n";
       continue;
     }
     const ImageScaleResult& r = *image.result;
@@ -410,9 +389,9 @@ void WriteScaleReport(const ModelScaleReport& report,
          << Fixed(r.monte_carlo.std_dev) << "</td><td>["
          << Fixed(r.monte_carlo.p2_5) << ", " << Fixed(r.monte_carlo.p97_5)
          << "]</td><td" << (r.accepted ? ">accepted" : " class=\"bad\">")
-         << Html(r.rejection) << "</td><td>";
+         << HtmlEscape(r.rejection) << "</td><td>";
     if (!image.overlay.empty()) {
-      html << "<a href=\"" << Html(image.overlay) << "\">overlay</a>";
+      html << "<a href=\"" << HtmlEscape(image.overlay) << "\">overlay</a>";
     }
     html << "</td></tr>\n";
   }

@@ -21,7 +21,7 @@
 #include "common/util/error.h"
 #include "common/util/file.h"
 #include "common/util/plot.h"
-#include "report/html.h"
+#include "common/util/html.h"
 #include "report/survey_map.h"
 
 namespace uw {

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "report/html.h"
+#include "common/util/html.h"
 #include "report/test_report_inputs.h"
 #include "common/util/error.h"
 #include "common/util/file.h"

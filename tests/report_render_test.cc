@@ -14,7 +14,7 @@
 
 #include "common/util/file.h"
 #include "common/util/subprocess.h"
-#include "report/html.h"
+#include "common/util/html.h"
 #include "tests/support/process.h"
 
 namespace uw {

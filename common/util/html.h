@@ -1,5 +1,6 @@
 // The pieces of a self-contained HTML page (inline CSS, no script or font
-// from the network) that the survey report is written with.
+// from the network) that the survey report is written with; HtmlEscape is
+// every report's (laserscale's scale report too).
 #pragma once
 
 #include <string>

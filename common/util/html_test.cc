@@ -1,4 +1,4 @@
-#include "report/html.h"
+#include "common/util/html.h"
 
 #include <gtest/gtest.h>
 
