@@ -6,6 +6,7 @@
 #include "calib/same_model_check.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/mesh/mesh.h"
+#include "common/util/json_fields.h"
 
 namespace uw {
 namespace {
@@ -24,7 +25,7 @@ nlohmann::json LaserReport(const Laser& laser,
     const Eigen::Vector3d& p = result.points_in_cam[k];
     spot_reports.push_back({{"image", spots[k].image},
                             {"dive", spots[k].dive},
-                            {"point_in_cam", {p.x(), p.y(), p.z()}},
+                            {"point_in_cam", ToJson(p)},
                             {"inlier", static_cast<bool>(result.inliers[k])},
                             {"problem", result.problems[k]}});
   }

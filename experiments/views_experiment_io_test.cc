@@ -6,18 +6,10 @@
 #include <gtest/gtest.h>
 
 #include "common/util/error.h"
+#include "common/util/error_testing.h"
 
 namespace uw {
 namespace {
-
-std::string ErrorOf(const std::function<void()>& body) {
-  try {
-    body();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
-}
 
 TEST(ParseShotNoise, TwoToFourSigmas) {
   const ShotNoise two = ParseShotNoise("0.5:0.25");

@@ -6,18 +6,10 @@
 #include <gtest/gtest.h>
 
 #include "common/util/error.h"
+#include "common/util/error_testing.h"
 
 namespace uw {
 namespace {
-
-std::string ErrorOf(const std::function<void()>& body) {
-  try {
-    body();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
-}
 
 LaserSetup TwoLasers(const std::string& name) {
   LaserSetup setup;

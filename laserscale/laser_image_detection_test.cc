@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "common/util/error.h"
+#include "common/util/error_testing.h"
 #include "laserscale/laser_setup.h"
 #include "laserscale/spot_detector_testing.h"
 
@@ -21,15 +22,6 @@ fs::path MakeFolder(const std::string& name,
   fs::create_directories(dir);
   for (const std::string& file : files) std::ofstream(dir / file) << "x";
   return dir;
-}
-
-std::string ErrorOf(const std::function<void()>& body) {
-  try {
-    body();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
 }
 
 TEST(AuxiliaryImages, TheAutoConventionIsTheImageBesideElseTheNextOne) {

@@ -6,20 +6,12 @@
 #include <gtest/gtest.h>
 
 #include "common/util/error.h"
+#include "common/util/error_testing.h"
 
 namespace uw {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string ErrorOf(const std::function<void()>& body) {
-  try {
-    body();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
-}
 
 TEST(ReadLaserImageList, OneNamePerLineWithoutTrailingBlanks) {
   const fs::path path = fs::path(::testing::TempDir()) / "laser_list.txt";

@@ -20,8 +20,9 @@
 #include "common/util/csv.h"
 #include "common/util/error.h"
 #include "common/util/file.h"
-#include "common/util/plot.h"
 #include "common/util/html.h"
+#include "common/util/json_fields.h"
+#include "common/util/plot.h"
 #include "report/survey_map.h"
 
 namespace uw {
@@ -568,9 +569,7 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
            vector(offset.offset_m),
            offset.sigma_m ? vector(*offset.sigma_m) : "reference"});
       offsets.push_back(
-          {{"dive", offset.dive},
-           {"offset_m",
-            {offset.offset_m.x(), offset.offset_m.y(), offset.offset_m.z()}}});
+          {{"dive", offset.dive}, {"offset_m", ToJson(offset.offset_m)}});
     }
     nav_json["dive_offsets"] = offsets;
     if (!offset_rows.empty()) {

@@ -45,15 +45,6 @@ WorldOptions SmallOptions() {
   return options;
 }
 
-std::string ErrorOf(const std::function<void()>& run) {
-  try {
-    run();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "(no uw::Error)";
-}
-
 double TriangleArea(const TriangleMesh& mesh, size_t t) {
   const Eigen::Vector3i& f = mesh.triangles[t];
   return 0.5 * (mesh.vertices[f[1]] - mesh.vertices[f[0]])

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "common/util/error_testing.h"  // ErrorOf
 #include "sim/world.h"
 
 namespace uw::sim {
@@ -21,9 +22,6 @@ inline constexpr WorldKind kKinds[] = {
 // Worlds small enough to build in a few milliseconds; the default worlds
 // are built once each, in the tests named after them.
 WorldOptions SmallOptions();
-
-// The message of the uw::Error `run` throws, or "(no uw::Error)".
-std::string ErrorOf(const std::function<void()>& run);
 
 double TriangleArea(const TriangleMesh& mesh, size_t t);
 Eigen::Vector3d Centroid(const TriangleMesh& mesh, size_t t);

@@ -1,7 +1,8 @@
 #include "calib/exe/calibrate_command.h"
 
-#include <cstdio>
 #include <filesystem>
+
+#include <fmt/format.h>
 
 #include "calib/calibration_report.h"
 #include "calib/corners_vnl.h"
@@ -69,10 +70,10 @@ void RunCalibrate(const CalibrateOptions& options) {
                          options.uncertainty, dir);
   for (const std::string& line :
        DescribeRigCalibration(result, options.uncertainty)) {
-    std::printf("[calibrate] %s\n", line.c_str());
+    fmt::print("[calibrate] {}\n", line.c_str());
   }
-  std::printf("[calibrate] RMS %.3f px; %s\n", result.rms_px,
-              (dir / "camera-0.cameramodel").c_str());
+  fmt::print("[calibrate] RMS {:.3f} px; {}\n", result.rms_px,
+             (dir / "camera-0.cameramodel").c_str());
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "calib/board_detection.h"
 #include "calib/corners_vnl.h"
 #include "calib/exe/board_flag.h"
@@ -31,7 +33,7 @@ void RunCalibDetect(const CalibDetectOptions& options) {
       options.images_dir, names, options.board, options.num_threads,
       [](int done, int total) {
         if (done % 10 == 0 || done == total) {
-          std::fprintf(stderr, "[detect] %d/%d images\n", done, total);
+          fmt::print(stderr, "[detect] {}/{} images\n", done, total);
         }
       });
   int found = 0;
@@ -51,8 +53,8 @@ void RunCalibDetect(const CalibDetectOptions& options) {
                                {"generated with " + command});
                          }}},
                        false);
-  std::printf("[detect] board found in %d of %zu images; corners in %s\n",
-              found, names.size(), options.out.c_str());
+  fmt::print("[detect] board found in {} of {} images; corners in {}\n", found,
+             names.size(), options.out.c_str());
 }
 
 }  // namespace

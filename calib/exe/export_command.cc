@@ -33,7 +33,7 @@ void RunCalibExport(const CalibExportOptions& options) {
         OpenCvYamlFromMrcal(model, options.cameramodel_path);
     WriteFilesAtomically(
         {{options.out, [&](std::ostream& stream) { stream << yaml; }}}, false);
-    std::printf("[export] %s\n", options.out.c_str());
+    fmt::print("[export] {}\n", options.out.c_str());
     return;
   }
   Camera camera = ColmapCameraFromMrcal(model, options.cameramodel_path);
@@ -44,7 +44,7 @@ void RunCalibExport(const CalibExportOptions& options) {
   for (const double param : camera.params) {
     line += fmt::format(" {:.17g}", param);
   }
-  std::printf("%s\n", line.c_str());
+  fmt::print("{}\n", line.c_str());
   if (options.output_path.empty()) return;
   Reconstruction reconstruction;
   reconstruction.AddCamera(camera);
@@ -52,8 +52,8 @@ void RunCalibExport(const CalibExportOptions& options) {
   WriteModel(
       reconstruction, options.output_path,
       options.output_type == "BIN" ? ModelFormat::kBinary : ModelFormat::kText);
-  std::fprintf(stderr, "[export] COLMAP model with camera %u in %s\n",
-               camera.camera_id, options.output_path.c_str());
+  fmt::print(stderr, "[export] COLMAP model with camera {} in {}\n",
+             camera.camera_id, options.output_path.c_str());
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "calib/camera_export.h"
 #include "calib/exe/board_flag.h"
 #include "calib/mrcal_calibration.h"
@@ -49,20 +51,20 @@ void RunCalibLasers(const CalibLasersOptions& options) {
   const BoardLaserCalibration result = CalibrateLasersFromBoardImages(
       camera, options.board, options.images_dir, names, options.lasers,
       [](const std::string& image, bool board_found, size_t num_spots) {
-        std::fprintf(stderr, "[lasers] %s: %s, %zu spots\n", image.c_str(),
-                     board_found ? "board found" : "no board (skipped)",
-                     num_spots);
+        fmt::print(stderr, "[lasers] {}: {}, {} spots\n", image.c_str(),
+                   board_found ? "board found" : "no board (skipped)",
+                   num_spots);
       });
   for (const LaserLineFit& fit : result.fits) {
-    std::printf("%s\n", DescribeLaserLineFit(fit).c_str());
+    fmt::print("{}\n", DescribeLaserLineFit(fit).c_str());
   }
   WriteFilesAtomically({{options.out,
                          [&](std::ostream& stream) {
                            stream << LasersJsonText({result.setup});
                          }}},
                        false);
-  std::printf("[lasers] %d of %zu images with the board; %s\n",
-              result.num_images_with_board, names.size(), options.out.c_str());
+  fmt::print("[lasers] {} of {} images with the board; {}\n",
+             result.num_images_with_board, names.size(), options.out.c_str());
 }
 
 }  // namespace

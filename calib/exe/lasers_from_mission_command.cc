@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include <fmt/format.h>
+
 #include "common/util/file.h"
 #include "laserscale/laser_setup.h"
 
@@ -44,15 +46,15 @@ void RunLasersFromMission(const LasersFromMissionCommandOptions& options) {
   LasersFromMissionCallbacks callbacks;
   callbacks.spots_gathered = [](const std::string& setup,
                                 const std::string& laser, size_t num_spots) {
-    std::fprintf(stderr,
-                 "[lasers-from-mission] set-up %s, laser %s: %zu "
-                 "stable spots in localized images\n",
-                 setup.c_str(), laser.c_str(), num_spots);
+    fmt::print(stderr,
+               "[lasers-from-mission] set-up {}, laser {}: {} "
+               "stable spots in localized images\n",
+               setup.c_str(), laser.c_str(), num_spots);
   };
   callbacks.laser_calibrated = [](const std::string& setup,
                                   const MissionLaserCalibration& result,
                                   size_t num_spots) {
-    std::printf("%s\n", DescribeMissionLaser(setup, result, num_spots).c_str());
+    fmt::print("{}\n", DescribeMissionLaser(setup, result, num_spots).c_str());
   };
   const LasersFromMission result =
       CalibrateLasersFromMissionFiles(options.mission, callbacks);
@@ -65,7 +67,7 @@ void RunLasersFromMission(const LasersFromMissionCommandOptions& options) {
                      }});
   }
   WriteFilesAtomically(files, false);
-  std::printf("[lasers-from-mission] %s\n", options.out.c_str());
+  fmt::print("[lasers-from-mission] {}\n", options.out.c_str());
 }
 
 }  // namespace

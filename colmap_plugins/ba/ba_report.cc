@@ -4,12 +4,10 @@
 #include <map>
 #include <utility>
 
+#include "common/util/json_fields.h"
+
 namespace uw {
 namespace {
-
-nlohmann::json Vector(const Eigen::Vector3d& v) {
-  return {v.x(), v.y(), v.z()};
-}
 
 nlohmann::json Terms(const std::map<std::string, CostTerm>& terms) {
   nlohmann::json json = nlohmann::json::object();
@@ -30,12 +28,11 @@ nlohmann::json BaReportJson(const NavBundleAdjustmentReport& report,
   for (const DiveOffsetEstimate& offset : report.dive_offsets) {
     nlohmann::json entry = {{"dive", offset.dive},
                             {"num_images", offset.num_images},
-                            {"offset_m", Vector(offset.offset_in_world)}};
+                            {"offset_m", ToJson(offset.offset_in_world)}};
     if (offset.covariance) {
-      entry["sigma_m"] = Vector(offset.covariance->diagonal().cwiseSqrt());
-      entry["covariance_m2"] = {Vector(offset.covariance->row(0)),
-                                Vector(offset.covariance->row(1)),
-                                Vector(offset.covariance->row(2))};
+      entry["sigma_m"] =
+          ToJson(Eigen::Vector3d(offset.covariance->diagonal().cwiseSqrt()));
+      entry["covariance_m2"] = ToJson(*offset.covariance);
     }
     offsets.push_back(entry);
   }
@@ -47,7 +44,7 @@ nlohmann::json BaReportJson(const NavBundleAdjustmentReport& report,
     nlohmann::json entry = {{"image_id", residual.image_id},
                             {"name", image != nullptr ? image->name : ""},
                             {"dive", residual.dive},
-                            {"error_m", Vector(residual.error_in_world)},
+                            {"error_m", ToJson(residual.error_in_world)},
                             {"error_norm_m", residual.error_in_world.norm()},
                             {"mahalanobis", residual.mahalanobis}};
     if (residual.attitude_error_deg) {
@@ -74,7 +71,7 @@ nlohmann::json BaReportJson(const NavBundleAdjustmentReport& report,
     per_dive.push_back(
         {{"dive", dive},
          {"num_images", count},
-         {"mean_error_m", Vector(entry.first / count)},
+         {"mean_error_m", ToJson(Eigen::Vector3d(entry.first / count))},
          {"rms_error_m", std::sqrt(entry.second.first / count)}});
   }
   nlohmann::json json = {

@@ -3,21 +3,13 @@
 #include <gtest/gtest.h>
 
 #include "common/util/error.h"
+#include "common/util/error_testing.h"
 #include "tests/support/text_file_reader_test.h"
 
 namespace uw {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string Message(const std::function<void()>& read) {
-  try {
-    read();
-  } catch (const uw::Error& error) {
-    return error.what();
-  }
-  return "no error";
-}
 
 // Input files (nav.csv, image_times.csv): a schema, comments, padding.
 // The fixtures keep the names of the two readers these cases were written
@@ -78,21 +70,21 @@ TEST_F(CsvTableTest, RowErrorsNameFileAndLine) {
   const CsvTable table =
       Read("name,a,b\nx,1.5,nan\nx,2,inf\nx,3,\nx,abc,1e400\nx,-2,-0.5\n");
   const std::string where = path_.string() + ":";
-  EXPECT_EQ(Message([&] { table.Double(0, "b"); }),
+  EXPECT_EQ(ErrorOf([&] { table.Double(0, "b"); }),
             where + "2: b must be a finite number, got 'nan'");
-  EXPECT_EQ(Message([&] { table.Double(1, "b"); }),
+  EXPECT_EQ(ErrorOf([&] { table.Double(1, "b"); }),
             where + "3: b must be a finite number, got 'inf'");
-  EXPECT_EQ(Message([&] { table.Double(2, "b"); }),
+  EXPECT_EQ(ErrorOf([&] { table.Double(2, "b"); }),
             where + "4: b must be a finite number, got ''");
-  EXPECT_EQ(Message([&] { table.Double(3, "b"); }),
+  EXPECT_EQ(ErrorOf([&] { table.Double(3, "b"); }),
             where + "5: b must be a finite number, got '1e400'");
-  EXPECT_EQ(Message([&] { table.Int(0, "a", 1); }),
+  EXPECT_EQ(ErrorOf([&] { table.Int(0, "a", 1); }),
             where + "2: a must be an integer >= 1, got '1.5'");
-  EXPECT_EQ(Message([&] { table.Int(3, "a", 1); }),
+  EXPECT_EQ(ErrorOf([&] { table.Int(3, "a", 1); }),
             where + "5: a must be an integer >= 1, got 'abc'");
-  EXPECT_EQ(Message([&] { table.Int(4, "a", 1); }),
+  EXPECT_EQ(ErrorOf([&] { table.Int(4, "a", 1); }),
             where + "6: a must be an integer >= 1, got '-2'");
-  EXPECT_EQ(Message([&] { table.NonNegativeDouble(4, "b"); }),
+  EXPECT_EQ(ErrorOf([&] { table.NonNegativeDouble(4, "b"); }),
             where + "6: b must be >= 0, got '-0.5'");
   EXPECT_EQ(table.NonNegativeDouble(1, "a"), 2.0);
 }
@@ -121,7 +113,7 @@ TEST_F(CsvTableTest, ReadsQuotedFieldsAsRfc4180) {
 
 TEST_F(CsvTableTest, MissingFileIsNamed) {
   fs::remove(path_);
-  EXPECT_NE(Message([&] {
+  EXPECT_NE(ErrorOf([&] {
               CsvTable::Read(path_, {"a"}, {"a"});
             }).find(path_.string()),
             std::string::npos);
@@ -167,13 +159,13 @@ TEST_F(CsvFile, ErrorsNameTheFileAndLine) {
             std::string::npos);
   EXPECT_NE(Error("\n\n").find(path_.string() + ": empty"), std::string::npos);
   const CsvTable file = Read("a,b\nx,1\n");
-  EXPECT_NE(Message([&] {
+  EXPECT_NE(ErrorOf([&] {
               file.Number(0, "a");
             }).find(path_.string() + ":2: a must be"),
             std::string::npos);
   EXPECT_THROW(file.Text(0, "c"), uw::Error);
   fs::remove(path_);
-  EXPECT_NE(Message([&] { CsvTable::Read(path_); }).find(path_.string()),
+  EXPECT_NE(ErrorOf([&] { CsvTable::Read(path_); }).find(path_.string()),
             std::string::npos);
 }
 

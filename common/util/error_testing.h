@@ -22,4 +22,14 @@ inline void ExpectErrorContaining(const std::function<void()>& body,
   }
 }
 
+// The message of the uw::Error that `body` throws; "" when it throws none.
+inline std::string ErrorOf(const std::function<void()>& body) {
+  try {
+    body();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
 }  // namespace uw

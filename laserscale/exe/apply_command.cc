@@ -1,7 +1,8 @@
 #include "laserscale/exe/apply_command.h"
 
-#include <cstdio>
 #include <filesystem>
+
+#include <fmt/format.h>
 
 #include "colmap_plugins/align/sim3.h"
 #include "colmap_plugins/scene/model_io.h"
@@ -36,16 +37,16 @@ void RunApply(const ApplyOptions& options) {
   WriteModel(
       model, options.output_path,
       options.output_type == "BIN" ? ModelFormat::kBinary : ModelFormat::kText);
-  std::printf("[apply] model scaled by %.6f into %s\n", scale,
-              options.output_path.c_str());
+  fmt::print("[apply] model scaled by {:.6f} into {}\n", scale,
+             options.output_path.c_str());
   if (!options.input_mesh.empty()) {
     TriangleMesh mesh = ReadMesh(options.input_mesh);
     for (Eigen::Vector3d& vertex : mesh.vertices) {
       vertex = scaled_from_model * vertex;
     }
     WritePly(mesh, options.output_mesh);
-    std::printf("[apply] mesh scaled by %.6f into %s\n", scale,
-                options.output_mesh.c_str());
+    fmt::print("[apply] mesh scaled by {:.6f} into {}\n", scale,
+               options.output_mesh.c_str());
   }
 }
 

@@ -1,7 +1,8 @@
 #include "laserscale/exe/detect_command.h"
 
-#include <cstdio>
 #include <filesystem>
+
+#include <fmt/format.h>
 
 #include "common/util/file.h"
 #include "common/util/plot.h"
@@ -63,8 +64,8 @@ void RunDetect(const DetectOptions& options) {
         for (const DetectedSpot& spot : spots.spots) stable += spot.stable;
         num_stable += stable;
         num_spots += spots.spots.size();
-        std::printf("[detect %zu/%zu] %s: %zu of %zu lasers stable\n", i + 1,
-                    count, spots.name.c_str(), stable, spots.spots.size());
+        fmt::print("[detect {}/{}] {}: {} of {} lasers stable\n", i + 1, count,
+                   spots.name.c_str(), stable, spots.spots.size());
         std::fflush(stdout);
         if (!options.overlays_dir.empty()) {
           fs::create_directories(options.overlays_dir);
@@ -78,8 +79,8 @@ void RunDetect(const DetectOptions& options) {
       {{options.out,
         [&](std::ostream& stream) { stream << SpotsJsonText(results); }}},
       false);
-  std::printf("[detect] %zu of %zu spots stable in %zu images; wrote %s\n",
-              num_stable, num_spots, results.size(), options.out.c_str());
+  fmt::print("[detect] {} of {} spots stable in {} images; wrote {}\n",
+             num_stable, num_spots, results.size(), options.out.c_str());
 }
 
 }  // namespace

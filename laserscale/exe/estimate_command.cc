@@ -1,7 +1,8 @@
 #include "laserscale/exe/estimate_command.h"
 
-#include <cstdio>
 #include <filesystem>
+
+#include <fmt/format.h>
 
 #include "common/mesh/mesh.h"
 #include "common/util/error.h"
@@ -53,7 +54,7 @@ void RunEstimate(const EstimateOptions& options) {
   const std::vector<LocalizedImage> poses =
       ReadLaserPosesJson(options.poses_path);
   const std::vector<ImageSpots> spots = ReadSpotsJson(images.spots_path);
-  std::printf("[estimate] reading the mesh %s\n", options.mesh_path.c_str());
+  fmt::print("[estimate] reading the mesh {}\n", options.mesh_path.c_str());
   std::fflush(stdout);
   const RayCaster caster(ReadMesh(options.mesh_path));
   const std::string method = ScaleMethodName(images.method);
@@ -62,13 +63,13 @@ void RunEstimate(const EstimateOptions& options) {
       [&](size_t i, size_t count, const ImageEstimate& estimate) {
         if (estimate.result) {
           const ImageScaleResult& r = *estimate.result;
-          std::printf("[estimate %zu/%zu] %s: %s %.5f +- %.5f%s%s\n", i + 1,
-                      count, estimate.name.c_str(), method.c_str(),
-                      r.nominal ? *r.nominal : 0.0, r.monte_carlo.std_dev,
-                      r.accepted ? "" : ", rejected: ", r.rejection.c_str());
+          fmt::print("[estimate {}/{}] {}: {} {:.5f} +- {:.5f}{}{}\n", i + 1,
+                     count, estimate.name.c_str(), method.c_str(),
+                     r.nominal ? *r.nominal : 0.0, r.monte_carlo.std_dev,
+                     r.accepted ? "" : ", rejected: ", r.rejection.c_str());
         } else {
-          std::printf("[estimate %zu/%zu] %s: skipped: %s\n", i + 1, count,
-                      estimate.name.c_str(), estimate.problem.c_str());
+          fmt::print("[estimate {}/{}] {}: skipped: {}\n", i + 1, count,
+                     estimate.name.c_str(), estimate.problem.c_str());
         }
         std::fflush(stdout);
       });
@@ -82,9 +83,9 @@ void RunEstimate(const EstimateOptions& options) {
     throw ErrorAt("no laser image was accepted, so there is no scale; see ",
                   index);
   }
-  std::printf(
-      "[estimate] scale s = %.5f, 95 %% interval [%.5f, %.5f] (sigma "
-      "%.5f, %zu of %zu images, Birge ratio %.2f); report %s\n",
+  fmt::print(
+      "[estimate] scale s = {:.5f}, 95 % interval [{:.5f}, {:.5f}] (sigma "
+      "{:.5f}, {} of {} images, Birge ratio {:.2f}); report {}\n",
       *model.nominal, model.ci95_low, model.ci95_high, model.sigma,
       model.images.size(), report.images.size(), model.birge_ratio,
       index.c_str());

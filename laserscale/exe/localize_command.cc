@@ -1,6 +1,6 @@
 #include "laserscale/exe/localize_command.h"
 
-#include <cstdio>
+#include <fmt/format.h>
 
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/file.h"
@@ -42,16 +42,16 @@ void RunLocalize(const LocalizeOptions& options) {
           bool camera_from_model) {
         if (result.success) {
           ++num_localized;
-          std::printf(
-              "[localize %zu/%zu] %s: %zu inliers of %zu matches with %zu "
-              "model images, RMS %.3f px%s\n",
+          fmt::print(
+              "[localize {}/{}] {}: {} inliers of {} matches with {} "
+              "model images, RMS {:.3f} px{}\n",
               i + 1, count, result.name.c_str(), result.inliers.size(),
               result.num_matches, result.num_matched_model_images,
               result.rms_error_px,
               camera_from_model ? "" : " (database camera)");
         } else {
-          std::printf("[localize %zu/%zu] %s: FAILED: %s\n", i + 1, count,
-                      result.name.c_str(), result.problem.c_str());
+          fmt::print("[localize {}/{}] {}: FAILED: {}\n", i + 1, count,
+                     result.name.c_str(), result.problem.c_str());
         }
         std::fflush(stdout);
       });
@@ -59,8 +59,8 @@ void RunLocalize(const LocalizeOptions& options) {
       {{options.out,
         [&](std::ostream& stream) { stream << LaserPosesJsonText(results); }}},
       false);
-  std::printf("[localize] %zu of %zu images localized; wrote %s\n",
-              num_localized, names.size(), options.out.c_str());
+  fmt::print("[localize] {} of {} images localized; wrote {}\n", num_localized,
+             names.size(), options.out.c_str());
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 #include "laserscale/exe/simulate_command.h"
 
-#include <cstdio>
 #include <filesystem>
+
+#include <fmt/format.h>
 
 #include "common/util/file.h"
 #include "experiments/views_experiment_io.h"
@@ -26,8 +27,8 @@ void AddSimulateFlags(CommandLine* cli, SimulateOptions* options) {
                       "Methods to compare");
   cli->AddRepeated<ShotNoise>(
       "--noise", &experiment.noise_levels,
-      "feature_px:spot_px[:direction_deg[:origin_m]], repeatable "
-      "(default: 0:0, noise-free)",
+      "feature_px:spot_px[:direction_deg[:origin_m]], repeatable; 0:0 is "
+      "noise-free",
       ParseShotNoise, ShotNoiseText);
   cli->Add("--model_scale", &experiment.model_scale,
            "The model is the world times this");
@@ -46,21 +47,23 @@ void AddSimulateFlags(CommandLine* cli, SimulateOptions* options) {
 void RunSimulate(const SimulateOptions& options) {
   const std::vector<ViewsExperimentRow> rows =
       RunViewsExperiment(options.experiment, [](size_t done, size_t total) {
-        std::printf("[simulate] %zu/%zu set-up x distance x noise done\n", done,
-                    total);
+        fmt::print("[simulate] {}/{} set-up x distance x noise done\n", done,
+                   total);
         std::fflush(stdout);
       });
-  std::printf(
-      "\nscale error e = s * model_scale - 1, over %s views (%%):\n"
-      "%-5s %5s %6s %6s %-14s %9s %9s %9s %9s\n",
+  fmt::print(
+      "\nscale error e = s * model_scale - 1, over {} views (%):\n"
+      "{:<5} {:>5} {:>6} {:>6} {:<14} {:>9} {:>9} {:>9} {:>9}\n",
       options.experiment.world.c_str(), "setup", "d[m]", "sf[px]", "sl[px]",
       "method", "mean", "sigma", "max|e|", "img max");
   for (const ViewsExperimentRow& row : rows) {
-    std::printf("%-5s %5.1f %6.2f %6.2f %-14s %9.4f %9.4f %9.4f %9.4f\n",
-                row.setup.c_str(), row.distance_m, row.noise.feature_px,
-                row.noise.spot_px, ScaleMethodName(row.method).c_str(),
-                100.0 * row.items.mean, 100.0 * row.items.std_dev,
-                100.0 * row.items.max_abs, 100.0 * row.images.max_abs);
+    fmt::print(
+        "{:<5} {:5.1f} {:6.2f} {:6.2f} {:<14} {:9.4f} {:9.4f} {:9.4f} "
+        "{:9.4f}\n",
+        row.setup.c_str(), row.distance_m, row.noise.feature_px,
+        row.noise.spot_px, ScaleMethodName(row.method).c_str(),
+        100.0 * row.items.mean, 100.0 * row.items.std_dev,
+        100.0 * row.items.max_abs, 100.0 * row.images.max_abs);
   }
   std::filesystem::create_directories(options.out);
   const auto text = [](const std::string& content) {
@@ -71,8 +74,8 @@ void RunSimulate(const SimulateOptions& options) {
                         {std::filesystem::path(options.out) / "views.csv",
                          text(ViewsCsvText(rows))}},
                        false);
-  std::printf("[simulate] wrote %s/accuracy.csv and views.csv\n",
-              options.out.c_str());
+  fmt::print("[simulate] wrote {}/accuracy.csv and views.csv\n",
+             options.out.c_str());
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #include "laserscale/exe/sparse_surface_command.h"
 
-#include <cstdio>
+#include <fmt/format.h>
 
 #include "colmap_plugins/scene/model_io.h"
 #include "common/mesh/mesh.h"
@@ -26,9 +26,9 @@ void RunSparseSurface(const SparseSurfaceCommandOptions& options) {
   const TriangleMesh mesh =
       SparseSurfaceMesh(ReadModel(options.input_path), options.surface);
   WritePly(mesh, options.output_path);
-  std::printf("[sparse_surface] %zu vertices, %zu triangles written to %s\n",
-              mesh.vertices.size(), mesh.triangles.size(),
-              options.output_path.c_str());
+  fmt::print("[sparse_surface] {} vertices, {} triangles written to {}\n",
+             mesh.vertices.size(), mesh.triangles.size(),
+             options.output_path.c_str());
 }
 
 }  // namespace
