@@ -19,8 +19,8 @@
 
 #include <Eigen/Core>
 
-#include "common/mesh/ray_caster.h"
 #include "colmap_plugins/scene/model.h"
+#include "common/mesh/ray_caster.h"
 #include "laserscale/laser_setup.h"
 #include "laserscale/scale_monte_carlo.h"
 

@@ -5,10 +5,10 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "common/util/html.h"
-#include "report/test_report_inputs.h"
 #include "common/util/error.h"
 #include "common/util/file.h"
+#include "common/util/html.h"
+#include "report/test_report_inputs.h"
 
 namespace uw {
 namespace {

@@ -10,10 +10,10 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "colmap_plugins/scene/model_io.h"
 #include "common/mesh/mesh.h"
 #include "common/mesh/test_meshes.h"
 #include "report/report_inputs.h"
-#include "colmap_plugins/scene/model_io.h"
 
 namespace uw {
 

@@ -13,8 +13,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/util/file.h"
-#include "common/util/subprocess.h"
 #include "common/util/html.h"
+#include "common/util/subprocess.h"
 #include "tests/support/process.h"
 
 namespace uw {

@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
-#include "common/mesh/ray_caster.h"
 #include "colmap_plugins/scene/model.h"
+#include "common/mesh/ray_caster.h"
 
 namespace uw {
 

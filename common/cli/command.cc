@@ -5,7 +5,6 @@
 #include <iostream>
 #include <set>
 
-
 namespace uw {
 namespace {
 
