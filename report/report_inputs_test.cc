@@ -4,6 +4,7 @@
 
 #include "common/util/error.h"
 #include "report/test_report_inputs.h"
+#include "tests/support/process.h"
 
 namespace uw {
 namespace {
@@ -13,7 +14,8 @@ namespace fs = std::filesystem;
 class ReportInputsTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) / "report_inputs_test";
+    // One folder per case: CTest runs the cases in parallel.
+    dir_ = testing::FreshTestDir("report_inputs_test");
     inputs_ = WriteTestReportInputs(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
