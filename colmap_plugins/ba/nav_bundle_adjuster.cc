@@ -12,9 +12,11 @@
 #include <Eigen/SVD>
 
 #include "colmap_plugins/align/similarity.h"
+#include "colmap_plugins/ba/bundle_covariance.h"
 #include "colmap_plugins/ba/nav_prior.h"
 #include "colmap_plugins/ba/reprojection_error.h"
 #include "colmap_plugins/ba/rig_prior.h"
+#include "colmap_plugins/ba/schur_covariance.h"
 #include "colmap_plugins/cameras/camera_models.h"
 #include "common/util/error.h"
 
@@ -155,6 +157,8 @@ class Adjustment {
              Reconstruction* reconstruction);
 
   NavBundleAdjustmentReport Run();
+  // The covariance at the current parameters (bundle_covariance.h).
+  BundleCovariance Covariance(const BundleCovarianceOptions& options);
 
  private:
   void IndexAndValidate();
@@ -172,11 +176,23 @@ class Adjustment {
   // Whether the placement rounds of Run apply: plain position priors and
   // nothing else that sees the model's placement.
   bool PlacementApplies() const;
+  // Sum over observations of |reprojection error|^2, px^2.
+  double SumSquaredReprojection() const;
   // Moves the model by the similarity that minimises the position priors'
   // term for its current shape; false when that similarity is the identity
   // (to rounding).
   bool ReplaceOnPriors();
   void EstimateOffsetCovariance(NavBundleAdjustmentReport* report);
+  // Checks that `gauge` is one this problem can have and fixes it; returns
+  // its description.
+  std::string ChooseCovarianceGauge(CovarianceGauge gauge);
+  // The pixel sigma of the covariance: given, or from the residuals.
+  void ChoosePixelSigma(const BundleCovarianceOptions& options,
+                        BundleCovariance* covariance) const;
+  // The similarity directions in the tangent space of each variable.
+  void FillSimilarityNullSpace(const ceres::Problem& problem,
+                               const std::vector<point3D_t>& point_ids,
+                               SchurCovarianceOptions* options) const;
   void FillPriorResiduals(NavBundleAdjustmentReport* report) const;
   void CopyBack() const;
 
@@ -587,28 +603,9 @@ std::map<std::string, CostTerm> Adjustment::EvaluateTerms(
     }
   }
   // Unweighted mean squares, from the parameter values directly.
-  const std::vector<Image>& images = reconstruction_->Images();
   if (result.count("reprojection") != 0) {
-    double sum = 0.0;
-    for (size_t i = 0; i < images.size(); ++i) {
-      const Camera& camera =
-          reconstruction_->Cameras()[camera_index_.at(images[i].camera_id)];
-      const double* params =
-          camera_params_[camera_index_.at(images[i].camera_id)].data();
-      const PoseBlock& pose = poses_[i];
-      for (const Point2D& point2D : images[i].points2D) {
-        if (!point2D.HasPoint3D()) continue;
-        Eigen::Vector2d residual;
-        VisitCameraModel(camera.model_id, [&](auto tag) {
-          using Model = typename decltype(tag)::type;
-          ReprojectionErrorCostFunctor<Model>(point2D.xy, 1.0)(
-              pose.rotation, pose.translation,
-              points_.at(point2D.point3D_id).data(), params, residual.data());
-        });
-        sum += residual.squaredNorm();
-      }
-    }
-    result["reprojection"].mean_squared = sum / num_observations_;
+    result["reprojection"].mean_squared =
+        SumSquaredReprojection() / num_observations_;
   }
   if (result.count("navigation_position") != 0) {
     double sum = 0.0;
@@ -638,6 +635,30 @@ std::map<std::string, CostTerm> Adjustment::EvaluateTerms(
         sum / result["navigation_attitude"].num_residual_blocks;
   }
   return result;
+}
+
+double Adjustment::SumSquaredReprojection() const {
+  const std::vector<Image>& images = reconstruction_->Images();
+  double sum = 0.0;
+  for (size_t i = 0; i < images.size(); ++i) {
+    const Camera& camera =
+        reconstruction_->Cameras()[camera_index_.at(images[i].camera_id)];
+    const double* params =
+        camera_params_[camera_index_.at(images[i].camera_id)].data();
+    const PoseBlock& pose = poses_[i];
+    for (const Point2D& point2D : images[i].points2D) {
+      if (!point2D.HasPoint3D()) continue;
+      Eigen::Vector2d residual;
+      VisitCameraModel(camera.model_id, [&](auto tag) {
+        using Model = typename decltype(tag)::type;
+        ReprojectionErrorCostFunctor<Model>(point2D.xy, 1.0)(
+            pose.rotation, pose.translation,
+            points_.at(point2D.point3D_id).data(), params, residual.data());
+      });
+      sum += residual.squaredNorm();
+    }
+  }
+  return sum;
 }
 
 bool Adjustment::PlacementApplies() const {
@@ -949,6 +970,327 @@ NavBundleAdjustmentReport Adjustment::Run() {
   return report;
 }
 
+std::string Adjustment::ChooseCovarianceGauge(CovarianceGauge gauge) {
+  const std::string twice =
+      "the navigation priors fix the gauge; --Covariance.gauge " +
+      CovarianceGaugeName(gauge) + " would fix it twice (use priors)";
+  switch (gauge) {
+    case CovarianceGauge::kPriors:
+      if (priors_.empty()) {
+        throw ErrorAt(
+            "the gauge is not fixed: the model has no navigation priors; "
+            "choose --Covariance.gauge held (the first image's pose and the "
+            "second's scale, as COLMAP) or free_network (minimum trace)");
+      }
+      return ChooseGauge();
+    case CovarianceGauge::kHeld:
+      if (!priors_.empty()) throw ErrorAt(twice);
+      return ChooseGauge();
+    case CovarianceGauge::kFreeNetwork:
+      if (!priors_.empty()) throw ErrorAt(twice);
+      if (!rig_pairings_.empty()) {
+        throw ErrorAt(
+            "free_network with a rig: the rig's baselines fix the scale, so "
+            "the gauge has 6 degrees of freedom; use --Covariance.gauge held");
+      }
+      if (!options_.refine_extrinsics) {
+        throw ErrorAt(
+            "free_network needs refined poses "
+            "(--BundleAdjustment.refine_extrinsics 1)");
+      }
+      ChooseGauge();
+      fixed_pose_.reset();
+      fixed_translation_coordinate_.reset();
+      return "free network: the minimum-norm pseudo-inverse (inner "
+             "constraints on every pose and point)";
+  }
+  return "?";
+}
+
+void Adjustment::ChoosePixelSigma(const BundleCovarianceOptions& options,
+                                  BundleCovariance* covariance) const {
+  if (options.pixel_sigma_px > 0.0) {
+    covariance->pixel_sigma_px = options.pixel_sigma_px;
+    covariance->pixel_sigma_source = "given";
+    return;
+  }
+  // The images alone fix everything but a similarity (a rigid motion with
+  // a rig): their redundancy is 2M minus the parameters they determine.
+  long parameters = 3 * static_cast<long>(points_.size());
+  if (options_.refine_extrinsics)
+    parameters += 6 * static_cast<long>(poses_.size());
+  for (size_t c = 0; c < camera_params_.size(); ++c) {
+    parameters +=
+        static_cast<long>(camera_params_[c].size()) -
+        static_cast<long>(ConstantCameraParams(
+                              options_, reconstruction_->Cameras()[c].model_id)
+                              .size());
+  }
+  if (options_.refine_extrinsics) parameters -= rig_pairings_.empty() ? 7 : 6;
+  const long redundancy = 2 * static_cast<long>(num_observations_) - parameters;
+  if (redundancy <= 0) {
+    throw ErrorAt("the images have no redundancy (", 2 * num_observations_,
+                  " reprojection coordinates for ", parameters,
+                  " parameters): the pixel noise cannot be estimated; give "
+                  "--Covariance.pixel_sigma");
+  }
+  covariance->pixel_sigma_px = std::sqrt(SumSquaredReprojection() / redundancy);
+  if (!(covariance->pixel_sigma_px > 0.0)) {
+    throw ErrorAt(
+        "the reprojection residuals are all zero: the pixel noise "
+        "cannot be estimated; give --Covariance.pixel_sigma");
+  }
+  covariance->pixel_sigma_source = "estimated: sqrt(sum |r|^2 / redundancy " +
+                                   std::to_string(redundancy) + ")";
+}
+
+void Adjustment::FillSimilarityNullSpace(
+    const ceres::Problem& problem, const std::vector<point3D_t>& point_ids,
+    SchurCovarianceOptions* options) const {
+  // A similarity x' = (1 + sigma) x + omega x x + tau moves, to first order,
+  // a point by [-[x]_x | I | x] (omega, tau, sigma), and a pose by
+  // d = -R omega / 2, dt = -R tau + sigma t (Ceres' quaternion tangent d
+  // rotates by the angle 2|d|: cam_from_world' = [cos|d|, sin|d| d/|d|] *
+  // cam_from_world); intrinsics not at all.
+  for (const PoseBlock& pose : poses_) {
+    const Eigen::Matrix3d r =
+        Eigen::Quaterniond(pose.rotation[0], pose.rotation[1], pose.rotation[2],
+                           pose.rotation[3])
+            .toRotationMatrix();
+    Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(6, 7);
+    rows.block<3, 3>(0, 0) = -0.5 * r;
+    rows.block<3, 3>(3, 3) = -r;
+    rows.block<3, 1>(3, 6) =
+        Eigen::Map<const Eigen::Vector3d>(pose.translation);
+    options->null_space_reduced.push_back(rows);
+  }
+  for (const std::vector<double>& params : camera_params_) {
+    if (!problem.HasParameterBlock(params.data())) continue;
+    const int size = problem.IsParameterBlockConstant(params.data())
+                         ? 0
+                         : problem.ParameterBlockTangentSize(params.data());
+    options->null_space_reduced.push_back(Eigen::MatrixXd::Zero(size, 7));
+  }
+  for (const point3D_t id : point_ids) {
+    const Eigen::Vector3d& x = points_.at(id);
+    Eigen::MatrixXd rows(3, 7);
+    rows << 0.0, x.z(), -x.y(), 1.0, 0.0, 0.0, x.x(),  //
+        -x.z(), 0.0, x.x(), 0.0, 1.0, 0.0, x.y(),      //
+        x.y(), -x.x(), 0.0, 0.0, 0.0, 1.0, x.z();
+    options->null_space_points.push_back(rows);
+  }
+}
+
+BundleCovariance Adjustment::Covariance(
+    const BundleCovarianceOptions& options) {
+  const auto start = Clock::now();
+  options.Check();
+  BundleCovariance result;
+  result.gauge = options.gauge;
+  result.gauge_description = ChooseCovarianceGauge(options.gauge);
+  result.num_observations = static_cast<int>(num_observations_);
+
+  // What cannot have a covariance, named before anything is computed.
+  const std::vector<Image>& images = reconstruction_->Images();
+  std::vector<int> image_points(images.size(), 0);
+  for (size_t i = 0; i < images.size(); ++i) {
+    for (const Point2D& point2D : images[i].points2D) {
+      if (point2D.HasPoint3D()) ++image_points[i];
+    }
+    if (options_.refine_extrinsics && image_points[i] < 3) {
+      throw ErrorAt("image ", images[i].image_id, " (", images[i].name,
+                    ") sees ", image_points[i],
+                    " points: its pose needs at least 3 for a covariance");
+    }
+  }
+  std::vector<point3D_t> point_ids;
+  for (const Point3D& point : reconstruction_->Points3D()) {
+    if (point.track.empty()) continue;
+    if (!point.xyz.allFinite()) {
+      throw ErrorAt("point ", point.point3D_id, " has a non-finite position");
+    }
+    if (point.track.size() < 2) {
+      throw ErrorAt("point ", point.point3D_id, " is seen by ",
+                    point.track.size(),
+                    " image: its position has no covariance (filter tracks "
+                    "shorter than 2)");
+    }
+    point_ids.push_back(point.point3D_id);
+  }
+  for (size_t c = 0; c < camera_params_.size(); ++c) {
+    for (const double value : camera_params_[c]) {
+      if (!std::isfinite(value)) {
+        throw ErrorAt("camera ", reconstruction_->Cameras()[c].camera_id,
+                      " has a non-finite parameter");
+      }
+    }
+  }
+  ChoosePixelSigma(options, &result);
+
+  Weights weights;
+  weights.reprojection = 1.0 / result.pixel_sigma_px;
+  weights.reprojection_loss_scale =
+      options_.loss_scale_px / result.pixel_sigma_px;
+  weights.nav = 1.0;
+  weights.nav_loss_scale = options_.nav_loss_scale;
+  weights.rig = 1.0;
+  ceres::Problem problem;
+  Build(weights, &problem, nullptr);
+
+  std::vector<ReducedVariable> reduced;
+  for (size_t i = 0; i < images.size(); ++i) {
+    reduced.push_back({{poses_[i].rotation, poses_[i].translation},
+                       "image " + std::to_string(images[i].image_id) + " (" +
+                           images[i].name + ")"});
+  }
+  std::vector<size_t> camera_variables;
+  for (size_t c = 0; c < camera_params_.size(); ++c) {
+    if (!problem.HasParameterBlock(camera_params_[c].data())) continue;
+    camera_variables.push_back(c);
+    reduced.push_back(
+        {{camera_params_[c].data()},
+         "camera " + std::to_string(reconstruction_->Cameras()[c].camera_id)});
+  }
+  std::vector<int> offset_variables;
+  for (auto& [dive, offset] : dive_offsets_) {
+    if (!problem.HasParameterBlock(offset.data())) continue;
+    offset_variables.push_back(dive);
+    reduced.push_back({{offset.data()},
+                       "dive " + std::to_string(dive) + " navigation offset"});
+  }
+  std::vector<EliminatedPoint> points;
+  for (const point3D_t id : point_ids) {
+    points.push_back({points_.at(id).data(), "point " + std::to_string(id)});
+  }
+  SchurCovarianceOptions schur;
+  schur.point_marginals = options.point_marginals;
+  schur.covisible_cross = options.covisible_cross;
+  if (options.gauge == CovarianceGauge::kFreeNetwork) {
+    FillSimilarityNullSpace(problem, point_ids, &schur);
+  }
+  const SchurCovariance covariance =
+      ComputeSchurCovariance(&problem, reduced, points, schur);
+
+  // Tangent coordinates of a pose -> [rotation (3); translation (3)].
+  const auto pose_embedding = [&](size_t i) {
+    const bool rotation_free =
+        !problem.IsParameterBlockConstant(poses_[i].rotation);
+    const bool translation_free =
+        !problem.IsParameterBlockConstant(poses_[i].translation);
+    std::vector<int> rows;
+    if (rotation_free) rows.insert(rows.end(), {0, 1, 2});
+    if (translation_free) {
+      for (int k = 0; k < 3; ++k) {
+        const bool fixed = fixed_translation_coordinate_ &&
+                           fixed_translation_coordinate_->first == i &&
+                           fixed_translation_coordinate_->second == k;
+        if (!fixed) rows.push_back(3 + k);
+      }
+    }
+    Eigen::MatrixXd embedding = Eigen::MatrixXd::Zero(6, rows.size());
+    for (size_t x = 0; x < rows.size(); ++x) embedding(rows[x], x) = 1.0;
+    // [d; dt] -> [w; c]: the rotation vector of Ceres' tangent is 2 d, so
+    // w = -2 R^T d and c = -2 R^T [t]_x d - R^T dt.
+    const Eigen::Matrix3d r =
+        Eigen::Quaterniond(poses_[i].rotation[0], poses_[i].rotation[1],
+                           poses_[i].rotation[2], poses_[i].rotation[3])
+            .toRotationMatrix();
+    const Eigen::Vector3d t =
+        Eigen::Map<const Eigen::Vector3d>(poses_[i].translation);
+    Eigen::Matrix3d t_cross;
+    t_cross << 0.0, -t.z(), t.y(), t.z(), 0.0, -t.x(), -t.y(), t.x(), 0.0;
+    Eigen::Matrix<double, 6, 6> to_world = Eigen::Matrix<double, 6, 6>::Zero();
+    to_world.block<3, 3>(0, 0) = -2.0 * r.transpose();
+    to_world.block<3, 3>(3, 0) = -2.0 * r.transpose() * t_cross;
+    to_world.block<3, 3>(3, 3) = -r.transpose();
+    return Eigen::MatrixXd(to_world * embedding);
+  };
+  std::vector<Eigen::MatrixXd> embeddings;
+  for (size_t i = 0; i < images.size(); ++i) {
+    embeddings.push_back(pose_embedding(i));
+    ImageCovariance image;
+    image.image_id = images[i].image_id;
+    image.num_points = image_points[i];
+    image.held = embeddings[i].cols() == 0;
+    image.rotation_center =
+        embeddings[i] * covariance.reduced[i] * embeddings[i].transpose();
+    result.images.push_back(image);
+  }
+  for (size_t v = 0; v < camera_variables.size(); ++v) {
+    const size_t c = camera_variables[v];
+    CameraCovariance camera;
+    camera.camera_id = reconstruction_->Cameras()[c].camera_id;
+    const std::vector<int> constant =
+        ConstantCameraParams(options_, reconstruction_->Cameras()[c].model_id);
+    if (!problem.IsParameterBlockConstant(camera_params_[c].data())) {
+      for (int k = 0; k < static_cast<int>(camera_params_[c].size()); ++k) {
+        if (std::find(constant.begin(), constant.end(), k) == constant.end()) {
+          camera.param_indices.push_back(k);
+        }
+      }
+    }
+    camera.params = covariance.reduced[images.size() + v];
+    VisitCameraModel(reconstruction_->Cameras()[c].model_id, [&](auto tag) {
+      using Model = typename decltype(tag)::type;
+      for (const int index : Model::kFocalLengthIdxs) {
+        const auto at = std::find(camera.param_indices.begin(),
+                                  camera.param_indices.end(), index);
+        if (at == camera.param_indices.end()) continue;
+        const int k = static_cast<int>(at - camera.param_indices.begin());
+        const double f = camera_params_[c][index];
+        const double sigma = std::sqrt(camera.params(k, k));
+        if (sigma > kPoorFocalLengthFraction * std::abs(f)) {
+          result.warnings.push_back(
+              "camera " + std::to_string(camera.camera_id) +
+              ": focal length sigma " + std::to_string(sigma) + " px is " +
+              std::to_string(100.0 * sigma / std::abs(f)) +
+              " % of f: the self-calibration is nearly degenerate (the "
+              "focal length trades against the distance to the scene), so "
+              "the estimate may be off by several of these sigmas; fix the "
+              "intrinsics from a calibration (uwcalib) or add relief and "
+              "altitude changes");
+        }
+      }
+    });
+    result.cameras.push_back(camera);
+  }
+  for (size_t v = 0; v < offset_variables.size(); ++v) {
+    const Eigen::MatrixXd& block =
+        covariance.reduced[images.size() + camera_variables.size() + v];
+    if (block.rows() == 3) result.dive_offsets[offset_variables[v]] = block;
+  }
+  for (size_t j = 0; j < covariance.points.size(); ++j) {
+    PointCovariance point;
+    point.point3D_id = point_ids[j];
+    point.track_length = static_cast<int>(
+        reconstruction_->FindPoint3D(point_ids[j])->track.size());
+    point.xyz = covariance.points[j];
+    result.points.push_back(point);
+  }
+  for (const auto& [pair, block] : covariance.cross) {
+    const auto [a, b] = pair;
+    if (a >= static_cast<int>(images.size()) ||
+        b >= static_cast<int>(images.size())) {
+      continue;
+    }
+    ImagePairCovariance cross;
+    cross.image_id1 = images[a].image_id;
+    cross.image_id2 = images[b].image_id;
+    cross.rotation_center = embeddings[a] * block * embeddings[b].transpose();
+    result.covisible.push_back(cross);
+  }
+  result.num_residuals = covariance.num_residuals;
+  result.num_reduced_coordinates = covariance.num_reduced_coordinates;
+  result.factor_nonzeros = covariance.factor_nonzeros;
+  result.reciprocal_condition = covariance.reciprocal_condition;
+  result.jacobian_time_s = covariance.jacobian_time_s;
+  result.schur_time_s = covariance.schur_time_s;
+  result.factor_time_s = covariance.factor_time_s;
+  result.inverse_time_s = covariance.inverse_time_s;
+  result.total_time_s =
+      std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
 }  // namespace
 
 NavBundleAdjustmentReport AdjustWithNavigation(
@@ -958,6 +1300,16 @@ NavBundleAdjustmentReport AdjustWithNavigation(
     Reconstruction* reconstruction) {
   Adjustment adjustment(options, priors, rig, image_times, reconstruction);
   return adjustment.Run();
+}
+
+BundleCovariance EstimateBundleCovariance(
+    const NavBundleAdjustmentOptions& adjuster,
+    const std::vector<ImagePosePrior>& priors, const SoftRig* rig,
+    const std::unordered_map<image_t, double>& image_times,
+    const Reconstruction& model, const BundleCovarianceOptions& options) {
+  Reconstruction copy = model;
+  Adjustment adjustment(adjuster, priors, rig, image_times, &copy);
+  return adjustment.Covariance(options);
 }
 
 }  // namespace uw

@@ -1,0 +1,129 @@
+// The covariance of a bundle adjustment at its solution: the problem
+// AdjustWithNavigation solves (reprojection, navigation position and
+// attitude, dive offsets, soft rig; losses as Ceres applies them), each
+// residual divided by its own sigma, through the Schur complement and the
+// sparse inverse of schur_covariance.h. docs/covariance.md explains the
+// gauge, the pixel sigma and the outputs.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "colmap_plugins/ba/nav_bundle_adjuster.h"
+#include "colmap_plugins/scene/model.h"
+
+namespace uw {
+
+// What fixes the 7 degrees of freedom (6 with a rig) that the images leave.
+enum class CovarianceGauge {
+  kPriors,       // the navigation priors (the fused model's own datum)
+  kHeld,         // the adjuster's held coordinates without priors: the
+                 // first image's pose and one translation coordinate of the
+                 // second (COLMAP's choice)
+  kFreeNetwork,  // inner constraints: the minimum-norm pseudo-inverse
+                 // (minimum trace), what photogrammetry reports without
+                 // control
+};
+std::string CovarianceGaugeName(CovarianceGauge gauge);  // priors, held,
+                                                         // free_network
+CovarianceGauge CovarianceGaugeFromName(const std::string& name);
+
+struct BundleCovarianceOptions {
+  CovarianceGauge gauge = CovarianceGauge::kPriors;
+  // Pixel noise (px per coordinate); 0: estimated from the reprojection
+  // residuals with the images' redundancy (2M - 3P - 6I - K + gauge).
+  double pixel_sigma_px = 0.0;
+  bool point_marginals = true;
+  // Cross-covariances of image pairs that see a common point.
+  bool covisible_cross = false;
+
+  void Check() const;
+};
+
+// A pose's covariance as [world-frame rotation vector of world_from_cam
+// (rad); camera centre in world (m)], world_from_cam = Exp(w) * estimate.
+using PoseCovariance = Eigen::Matrix<double, 6, 6>;
+
+struct ImageCovariance {
+  image_t image_id = 0;
+  bool held = false;  // part of the gauge: zero covariance by definition
+  int num_points = 0;
+  PoseCovariance rotation_center;
+  Eigen::Matrix3d CenterCovariance() const {
+    return rotation_center.bottomRightCorner<3, 3>();
+  }
+  Eigen::Matrix3d RotationCovariance() const {
+    return rotation_center.topLeftCorner<3, 3>();
+  }
+};
+
+struct CameraCovariance {
+  camera_t camera_id = 0;
+  std::vector<int> param_indices;  // the refined parameters, in order
+  Eigen::MatrixXd params;          // their covariance
+};
+
+struct PointCovariance {
+  point3D_t point3D_id = 0;
+  int track_length = 0;
+  Eigen::Matrix3d xyz;  // m^2, world
+};
+
+struct ImagePairCovariance {
+  image_t image_id1 = 0;
+  image_t image_id2 = 0;
+  PoseCovariance rotation_center;  // rows image 1, columns image 2
+};
+
+struct BundleCovariance {
+  CovarianceGauge gauge = CovarianceGauge::kPriors;
+  std::string gauge_description;
+  double pixel_sigma_px = 0.0;
+  std::string pixel_sigma_source;
+  int num_observations = 0;
+  std::vector<ImageCovariance> images;
+  std::vector<CameraCovariance> cameras;
+  std::map<int, Eigen::Matrix3d> dive_offsets;  // non-reference dives
+  std::vector<PointCovariance> points;
+  std::vector<ImagePairCovariance> covisible;
+  // Where the linearised covariance is not to be trusted (printed, and in
+  // covariance.json): a focal length whose sigma exceeds
+  // kPoorFocalLengthFraction of itself.
+  std::vector<std::string> warnings;
+  // From ComputeSchurCovariance.
+  int num_residuals = 0;
+  int num_reduced_coordinates = 0;
+  long factor_nonzeros = 0;
+  double reciprocal_condition = 0.0;
+  double jacobian_time_s = 0.0;
+  double schur_time_s = 0.0;
+  double factor_time_s = 0.0;
+  double inverse_time_s = 0.0;
+  double total_time_s = 0.0;
+};
+
+// A self-calibration this uncertain about the focal length (sigma / f) is
+// nearly degenerate (the focal length trades against the distance to the
+// scene): the estimate's error is then dominated by nonlinearity and bias,
+// which the linearised covariance does not describe.
+constexpr double kPoorFocalLengthFraction = 0.05;
+
+// The covariance of `model` under the adjustment `adjuster`, `priors`,
+// `rig` and `image_times` define (the model is not changed; it should be
+// the adjusted one). Throws uw::Error, naming the image, point or camera,
+// for a problem without a covariance: an image seeing fewer than 3 points,
+// a point seen once, non-finite parameters, a gauge that the options do not
+// fix (kPriors without priors, kHeld or kFreeNetwork with them, kFreeNetwork
+// with a rig), a rank-deficient problem.
+BundleCovariance EstimateBundleCovariance(
+    const NavBundleAdjustmentOptions& adjuster,
+    const std::vector<ImagePosePrior>& priors, const SoftRig* rig,
+    const std::unordered_map<image_t, double>& image_times,
+    const Reconstruction& model, const BundleCovarianceOptions& options);
+
+}  // namespace uw
