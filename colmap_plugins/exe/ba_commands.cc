@@ -2,7 +2,9 @@
 
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
+#include "colmap_plugins/ba/covariance_files.h"
 #include "colmap_plugins/exe/nav_flags.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/error.h"
@@ -80,6 +82,70 @@ void AddNavBundleAdjustmentFlags(CommandLine* cli, std::string* input_path,
   cli->Add("--num_threads", &adjuster->num_threads, "-1: all cores");
 }
 
+void AddCovarianceFlags(CommandLine* cli, BundleCovarianceOptions* options) {
+  cli->Add<CovarianceGauge>(
+      "--Covariance.gauge", &options->gauge,
+      "What fixes the datum: priors (the navigation), held (the first "
+      "image's pose and the second's scale, as COLMAP) or free_network "
+      "(minimum-norm pseudo-inverse, inner constraints)",
+      CovarianceGaugeFromName, CovarianceGaugeName);
+  cli->Add("--Covariance.pixel_sigma", &options->pixel_sigma_px,
+           "Pixel noise per coordinate (px); 0: estimated from the "
+           "reprojection residuals and the images' redundancy");
+  cli->Add("--Covariance.points", &options->point_marginals,
+           "Also the 3x3 marginal of every point");
+  cli->Add("--Covariance.covisible", &options->covisible_cross,
+           "Also the cross-covariances of image pairs that see a common "
+           "point (in memory; not written yet)");
+}
+
+// The covariance of `model`, its summary and warnings printed.
+BundleCovariance EstimateCovariance(const NavBundleAdjustmentOptions& adjuster,
+                                    const NavInputs& inputs,
+                                    const BundleCovarianceOptions& options,
+                                    const Reconstruction& model) {
+  PrintLine("Covariance: " + std::to_string(model.Images().size()) +
+            " images, " + std::to_string(model.Points3D().size()) +
+            " points, gauge " + CovarianceGaugeName(options.gauge));
+  const BundleCovariance covariance = EstimateBundleCovariance(
+      adjuster, inputs.priors, inputs.rig ? &*inputs.rig : nullptr,
+      inputs.image_times, model, options);
+  const nlohmann::json summary = CovarianceSummaryJson(covariance, model);
+  std::cout << "  pixel sigma " << covariance.pixel_sigma_px << " px ("
+            << covariance.pixel_sigma_source << ")\n"
+            << "  camera centre sigma: median "
+            << summary["images"]["sigma_position_m"]["median"].get<double>()
+            << " m, max "
+            << summary["images"]["sigma_position_m"]["max"].get<double>()
+            << " m; rotation median "
+            << summary["images"]["sigma_rotation_deg"]["median"].get<double>()
+            << " deg\n";
+  if (options.point_marginals) {
+    std::cout
+        << "  point sigma (largest axis): median "
+        << summary["points"]["sigma_largest_axis_m"]["median"].get<double>()
+        << " m, p95 "
+        << summary["points"]["sigma_largest_axis_m"]["p95"].get<double>()
+        << " m; " << summary["points"]["num_weak"].get<long>()
+        << " weak points (> 3x the median)\n";
+  }
+  std::cout << "  " << covariance.total_time_s << " s (factor "
+            << covariance.factor_time_s << " s, sparse inverse "
+            << covariance.inverse_time_s << " s)\n";
+  for (const std::string& warning : covariance.warnings) {
+    std::cerr << "WARNING: " << warning << "\n";
+  }
+  return covariance;
+}
+
+void WriteCovariance(const BundleCovariance& covariance,
+                     const Reconstruction& model, const fs::path& folder) {
+  WriteCovarianceFiles(covariance, model, folder);
+  PrintLine("Wrote " + folder.string() +
+            " (covariance.bin, covariance.json, cameras.csv, points.ply, "
+            "uncertainty_map.png)");
+}
+
 void AddBundleAdjusterFlags(CommandLine* cli, BundleAdjusterOptions* options) {
   NavBundleAdjustmentControllerOptions& adjustment = options->adjustment;
   AddNavBundleAdjustmentFlags(cli, &adjustment.input_path, &adjustment.priors,
@@ -102,6 +168,10 @@ void AddBundleAdjusterFlags(CommandLine* cli, BundleAdjusterOptions* options) {
       NavWeightFromText, NavWeightText);
   cli->Add("--Nav.lcurve_steps", &adjustment.lcurve_steps,
            "Adjustments in the L-curve sweep of --Nav.weight corner|balance");
+  cli->Add("--BA.covariance", &options->covariance,
+           "Also the covariance of the adjusted model, into "
+           "OUTPUT/covariance (as covariance_estimator)");
+  AddCovarianceFlags(cli, &options->covariance_options);
 }
 
 void RunBundleAdjuster(const BundleAdjusterOptions& options) {
@@ -113,6 +183,18 @@ void RunBundleAdjuster(const BundleAdjusterOptions& options) {
   std::cout << FormatNavBundleAdjustmentSummary(adjustment, result, model);
   const nlohmann::json json =
       NavBundleAdjustmentJson(adjustment, result, model);
+  // Computed before anything is written: a model without a covariance
+  // (a free gauge, an image seeing too few points) writes nothing.
+  std::optional<BundleCovariance> covariance;
+  if (options.covariance) {
+    // The problem just solved: with the priors inside it, or, after a
+    // posterior similarity, the images alone.
+    NavInputs inputs =
+        LoadNavInputs(adjustment.priors, model, adjustment.input_path);
+    if (adjustment.strategy == NavStrategy::kPosterior) inputs.priors.clear();
+    covariance = EstimateCovariance(adjustment.adjuster, inputs,
+                                    options.covariance_options, model);
+  }
   const fs::path output(options.output_path);
   WriteModel(model, output, files.format);
   WriteFilesAtomically(
@@ -122,6 +204,27 @@ void RunBundleAdjuster(const BundleAdjusterOptions& options) {
   if (result.lcurve) WriteLCurvePlot(*result.lcurve, output / "lcurve.png");
   std::cout << "Wrote " << options.output_path << " (model, ba_report.json"
             << (result.lcurve ? ", lcurve.png" : "") << ")\n";
+  if (covariance) WriteCovariance(*covariance, model, output / "covariance");
+}
+
+void AddCovarianceEstimatorFlags(CommandLine* cli,
+                                 CovarianceEstimatorOptions* options) {
+  AddNavBundleAdjustmentFlags(cli, &options->input_path, &options->priors,
+                              &options->adjuster);
+  cli->Add("--output_path", &options->output_path,
+           "Folder (new or empty) for covariance.bin, covariance.json, "
+           "cameras.csv, points.ply and uncertainty_map.png")
+      ->required();
+  AddCovarianceFlags(cli, &options->covariance);
+}
+
+void RunCovarianceEstimator(const CovarianceEstimatorOptions& options) {
+  const Reconstruction model = ReadModel(options.input_path);
+  const NavInputs inputs =
+      LoadNavInputs(options.priors, model, options.input_path);
+  WriteCovariance(
+      EstimateCovariance(options.adjuster, inputs, options.covariance, model),
+      model, options.output_path);
 }
 
 void AddLCurveFlags(CommandLine* cli, LCurveCommandOptions* options) {
@@ -180,6 +283,41 @@ Subcommand BundleAdjusterCommand() {
       "sparse_nav --nav sim/nav.csv --mount down --lever_arm 0.6,0,-0.3 "
       "--boresight 0.3,-0.5,0.8 --Nav.strategy prior --Nav.weight auto",
       AddBundleAdjusterFlags, RunBundleAdjuster);
+}
+
+void CovarianceEstimatorOptions::Check() const {
+  std::error_code ignored;
+  if (fs::exists(output_path) && !fs::is_empty(output_path, ignored)) {
+    throw ErrorAt("--output_path ", output_path,
+                  " is not empty; give a new or empty folder");
+  }
+  priors.Check();
+  adjuster.Check();
+  covariance.Check();
+}
+
+Subcommand CovarianceEstimatorCommand() {
+  return MakeSubcommand<CovarianceEstimatorOptions>(
+      "covariance_estimator",
+      "pose, intrinsics and point covariances of a model (sparse, fast)",
+      "The covariance of a COLMAP model under the bundle adjustment "
+      "bundle_adjuster solves with the same flags (reprojection, navigation "
+      "priors, attitude, dive offsets, soft rig; losses applied): per-image "
+      "6x6 pose marginals, the intrinsics' block, per-point 3x3 marginals. "
+      "Schur complement onto the cameras, one sparse Cholesky (CHOLMOD) and "
+      "the sparse-inverse recursion on its pattern: no dense inverse. The "
+      "gauge is stated: the navigation priors, held coordinates (COLMAP's "
+      "choice) or free_network. A problem without a covariance (an image "
+      "seeing < 3 points, a point seen once, a free gauge, rank "
+      "deficiency) is an error naming what is wrong. docs/covariance.md "
+      "explains the outputs.\n\n"
+      "Examples:\n"
+      "  uwcolmap covariance_estimator --input_path sparse_nav --output_path "
+      "cov --nav sim/nav.csv --mount down --lever_arm 0.6,0,-0.3 "
+      "--boresight 0.3,-0.5,0.8\n"
+      "  uwcolmap covariance_estimator --input_path sparse/0 --output_path "
+      "cov --Covariance.gauge free_network",
+      AddCovarianceEstimatorFlags, RunCovarianceEstimator);
 }
 
 Subcommand LCurveCommand() {

@@ -12,11 +12,12 @@ namespace uw {
 
 const std::vector<Subcommand>& UwcolmapCommands() {
   static const std::vector<Subcommand> commands = {
-      BundleAdjusterCommand(),    DatabaseAnalyzerCommand(),
-      DenseMesherCommand(),       LCurveCommand(),
-      ModelAlignerCommand(),      ModelAnalyzerCommand(),
-      ModelConverterCommand(),    ModelComparerCommand(),
-      PosePriorImporterCommand(), SurveyReportCommand(),
+      BundleAdjusterCommand(),   CovarianceEstimatorCommand(),
+      DatabaseAnalyzerCommand(), DenseMesherCommand(),
+      LCurveCommand(),           ModelAlignerCommand(),
+      ModelAnalyzerCommand(),    ModelConverterCommand(),
+      ModelComparerCommand(),    PosePriorImporterCommand(),
+      SurveyReportCommand(),
   };
   return commands;
 }

@@ -1,0 +1,375 @@
+#include "colmap_plugins/ba/covariance_files.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <Eigen/Eigenvalues>
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/util/csv.h"
+#include "common/util/error.h"
+#include "common/util/file.h"
+#include "common/util/json_fields.h"
+#include "common/util/plot.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kMagic[8] = {'U', 'W', 'C', 'O', 'V', 0, 0, 1};
+// chi^2 with 3 degrees of freedom at 95 %.
+constexpr double kChi2ThreeDof95 = 7.814727903251178;
+
+// FNV-1a over the model's structure: which images (ids, names, cameras) and
+// points (ids, track lengths) the covariance belongs to.
+uint64_t Fingerprint(const Reconstruction& model) {
+  uint64_t hash = 1469598103934665603ull;
+  const auto add = [&](const void* data, size_t size) {
+    const unsigned char* bytes = static_cast<const unsigned char*>(data);
+    for (size_t k = 0; k < size; ++k) {
+      hash ^= bytes[k];
+      hash *= 1099511628211ull;
+    }
+  };
+  for (const Image& image : model.Images()) {
+    add(&image.image_id, sizeof(image.image_id));
+    add(&image.camera_id, sizeof(image.camera_id));
+    add(image.name.data(), image.name.size());
+  }
+  for (const Point3D& point : model.Points3D()) {
+    const uint64_t track = point.track.size();
+    add(&point.point3D_id, sizeof(point.point3D_id));
+    add(&track, sizeof(track));
+  }
+  return hash;
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2,
+                   values.end());
+  return values[values.size() / 2];
+}
+
+double Quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  return values[std::min(values.size() - 1,
+                         static_cast<size_t>(q * values.size()))];
+}
+
+double RotationSigmaDeg(const ImageCovariance& image) {
+  return std::sqrt(std::max(0.0, image.RotationCovariance().trace())) * 180.0 /
+         M_PI;
+}
+
+template <typename T>
+void Put(std::ostream& out, const T& value) {
+  out.write(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+template <typename T>
+T Get(std::istream& in, const fs::path& path) {
+  T value;
+  in.read(reinterpret_cast<char*>(&value), sizeof(T));
+  if (!in) throw ErrorAt(path.string(), ": truncated covariance sidecar");
+  return value;
+}
+
+void PutMatrix(std::ostream& out, const double* data, int count) {
+  out.write(reinterpret_cast<const char*>(data), sizeof(double) * count);
+}
+
+bool Close(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return (a - b).norm() <= 1e-6 * (1.0 + b.norm());
+}
+
+void WriteSidecar(const BundleCovariance& covariance,
+                  const Reconstruction& model, std::ostream& out) {
+  out.write(kMagic, sizeof(kMagic));
+  Put<uint64_t>(out, Fingerprint(model));
+  Put<uint8_t>(out, static_cast<uint8_t>(covariance.gauge));
+  Put<double>(out, covariance.pixel_sigma_px);
+  Put<uint64_t>(out, covariance.images.size());
+  Put<uint64_t>(out, covariance.points.size());
+  for (const ImageCovariance& image : covariance.images) {
+    const Eigen::Vector3d center =
+        model.FindImage(image.image_id)->ProjectionCenter();
+    Put<uint32_t>(out, image.image_id);
+    Put<uint8_t>(out, image.held ? 1 : 0);
+    Put<int32_t>(out, image.num_points);
+    PutMatrix(out, center.data(), 3);
+    PutMatrix(out, image.rotation_center.data(), 36);
+  }
+  for (const PointCovariance& point : covariance.points) {
+    const Eigen::Vector3d& xyz = model.FindPoint3D(point.point3D_id)->xyz;
+    Put<uint64_t>(out, point.point3D_id);
+    Put<int32_t>(out, point.track_length);
+    PutMatrix(out, xyz.data(), 3);
+    PutMatrix(out, point.xyz.data(), 9);
+  }
+}
+
+void WriteCamerasCsv(const BundleCovariance& covariance,
+                     const Reconstruction& model, std::ostream& out) {
+  out << "image_id,name,held,num_points,sigma_x_m,sigma_y_m,sigma_z_m,"
+         "sigma_position_m,sigma_rotation_deg\n";
+  for (const ImageCovariance& image : covariance.images) {
+    const Eigen::Matrix3d center = image.CenterCovariance();
+    out << image.image_id << ","
+        << CsvField(model.FindImage(image.image_id)->name) << ","
+        << (image.held ? 1 : 0) << "," << image.num_points
+        << fmt::format(",{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
+                       std::sqrt(center(0, 0)), std::sqrt(center(1, 1)),
+                       std::sqrt(center(2, 2)), std::sqrt(center.trace()),
+                       RotationSigmaDeg(image));
+  }
+}
+
+void WritePointsPly(const BundleCovariance& covariance,
+                    const Reconstruction& model, std::ostream& out) {
+  out << "ply\nformat ascii 1.0\n"
+      << "comment uwmetric covariance_estimator: sigma_m = 1-sigma of the "
+         "largest axis, sigma_rms_m = sqrt(trace/3), uncertainty = volume "
+         "(m^3) of the 95 % ellipsoid\n"
+      << "element vertex " << covariance.points.size() << "\n"
+      << "property float x\nproperty float y\nproperty float z\n"
+      << "property float sigma_m\nproperty float sigma_rms_m\n"
+      << "property float uncertainty\nproperty int observations\n"
+      << "end_header\n";
+  for (const PointCovariance& point : covariance.points) {
+    const Eigen::Vector3d& xyz = model.FindPoint3D(point.point3D_id)->xyz;
+    out << fmt::format("{:.9g} {:.9g} {:.9g} {:.6g} {:.6g} {:.6g} {}\n",
+                       xyz.x(), xyz.y(), xyz.z(), LargestAxisSigma(point.xyz),
+                       std::sqrt(point.xyz.trace() / 3.0),
+                       EllipsoidVolume95(point.xyz), point.track_length);
+  }
+}
+
+// Plan view: points in three classes of their largest-axis sigma against
+// the median, cameras on top.
+std::string RenderMap(const BundleCovariance& covariance,
+                      const Reconstruction& model) {
+  std::vector<double> sigmas;
+  for (const PointCovariance& point : covariance.points) {
+    sigmas.push_back(LargestAxisSigma(point.xyz));
+  }
+  const double median = Median(sigmas);
+  std::vector<double> x[3];
+  std::vector<double> y[3];
+  for (size_t j = 0; j < covariance.points.size(); ++j) {
+    const Eigen::Vector3d& xyz =
+        model.FindPoint3D(covariance.points[j].point3D_id)->xyz;
+    const int k = sigmas[j] <= median ? 0 : sigmas[j] <= 3.0 * median ? 1 : 2;
+    x[k].push_back(xyz.x());
+    y[k].push_back(xyz.y());
+  }
+  Plot plot("Point uncertainty, plan view (sigma of the largest axis)", "x (m)",
+            "y (m)", 900, 700);
+  const std::string labels[3] = {
+      fmt::format("<= median ({:.3g} mm)", 1000.0 * median),
+      "median .. 3x median", "> 3x median (weak)"};
+  const cv::Scalar colours[3] = {cv::Scalar(160, 160, 160),
+                                 cv::Scalar(0, 165, 255),
+                                 cv::Scalar(0, 0, 220)};
+  for (int k = 0; k < 3; ++k) {
+    if (!x[k].empty()) plot.Points(x[k], y[k], colours[k], labels[k]);
+  }
+  std::vector<double> cx;
+  std::vector<double> cy;
+  for (const ImageCovariance& image : covariance.images) {
+    const Eigen::Vector3d c =
+        model.FindImage(image.image_id)->ProjectionCenter();
+    cx.push_back(c.x());
+    cy.push_back(c.y());
+  }
+  plot.Points(cx, cy, cv::Scalar(0, 0, 0), "cameras");
+  std::vector<unsigned char> png;
+  if (!cv::imencode(".png", plot.Render(), png)) {
+    throw ErrorAt("could not encode the uncertainty map");
+  }
+  return std::string(png.begin(), png.end());
+}
+
+}  // namespace
+
+double LargestAxisSigma(const Eigen::Matrix3d& covariance) {
+  return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(
+                                     covariance, Eigen::EigenvaluesOnly)
+                                     .eigenvalues()(2)));
+}
+
+double EllipsoidVolume95(const Eigen::Matrix3d& covariance) {
+  return 4.0 / 3.0 * M_PI * std::pow(kChi2ThreeDof95, 1.5) *
+         std::sqrt(std::max(0.0, covariance.determinant()));
+}
+
+nlohmann::json CovarianceSummaryJson(const BundleCovariance& covariance,
+                                     const Reconstruction& model) {
+  nlohmann::json json;
+  json["gauge"] = CovarianceGaugeName(covariance.gauge);
+  json["gauge_description"] = covariance.gauge_description;
+  json["pixel_sigma_px"] = covariance.pixel_sigma_px;
+  json["pixel_sigma_source"] = covariance.pixel_sigma_source;
+  json["num_images"] = covariance.images.size();
+  json["num_points"] = covariance.points.size();
+  json["num_observations"] = covariance.num_observations;
+  json["num_residuals"] = covariance.num_residuals;
+  json["num_reduced_coordinates"] = covariance.num_reduced_coordinates;
+  json["factor_nonzeros"] = covariance.factor_nonzeros;
+  json["reciprocal_condition_scaled"] = covariance.reciprocal_condition;
+  json["time_s"] = {{"jacobian", covariance.jacobian_time_s},
+                    {"schur", covariance.schur_time_s},
+                    {"factor", covariance.factor_time_s},
+                    {"inverse", covariance.inverse_time_s},
+                    {"total", covariance.total_time_s}};
+  json["warnings"] = covariance.warnings;
+  json["model_fingerprint"] = fmt::format("{:016x}", Fingerprint(model));
+  json["cameras"] = nlohmann::json::array();
+  for (const CameraCovariance& camera : covariance.cameras) {
+    nlohmann::json entry;
+    entry["camera_id"] = camera.camera_id;
+    entry["param_indices"] = camera.param_indices;
+    std::vector<std::vector<double>> rows;
+    std::vector<double> sigmas;
+    for (int r = 0; r < camera.params.rows(); ++r) {
+      rows.emplace_back(camera.params.cols(), 0.0);
+      for (int c = 0; c < camera.params.cols(); ++c) {
+        rows.back()[c] = camera.params(r, c);
+      }
+      sigmas.push_back(std::sqrt(camera.params(r, r)));
+    }
+    entry["covariance"] = rows;
+    entry["sigmas"] = sigmas;
+    json["cameras"].push_back(entry);
+  }
+  json["dive_offsets"] = nlohmann::json::array();
+  for (const auto& [dive, block] : covariance.dive_offsets) {
+    json["dive_offsets"].push_back(
+        {{"dive", dive}, {"covariance_m2", ToJson(block)}});
+  }
+  std::vector<double> positions;
+  std::vector<double> rotations;
+  for (const ImageCovariance& image : covariance.images) {
+    if (image.held) continue;
+    positions.push_back(std::sqrt(image.CenterCovariance().trace()));
+    rotations.push_back(RotationSigmaDeg(image));
+  }
+  json["images"] = {{"sigma_position_m",
+                     {{"median", Median(positions)},
+                      {"p95", Quantile(positions, 0.95)},
+                      {"max", Quantile(positions, 1.0)}}},
+                    {"sigma_rotation_deg",
+                     {{"median", Median(rotations)},
+                      {"p95", Quantile(rotations, 0.95)},
+                      {"max", Quantile(rotations, 1.0)}}}};
+  std::vector<double> sigmas;
+  for (const PointCovariance& point : covariance.points) {
+    sigmas.push_back(LargestAxisSigma(point.xyz));
+  }
+  const double median = Median(sigmas);
+  json["points"] = {
+      {"sigma_largest_axis_m",
+       {{"median", median},
+        {"p95", Quantile(sigmas, 0.95)},
+        {"max", Quantile(sigmas, 1.0)}}},
+      {"num_weak", std::count_if(sigmas.begin(), sigmas.end(),
+                                 [&](double s) { return s > 3.0 * median; })},
+      {"weak_rule", "largest-axis sigma > 3x the median"}};
+  return json;
+}
+
+void WriteCovarianceFiles(const BundleCovariance& covariance,
+                          const Reconstruction& model,
+                          const std::filesystem::path& folder) {
+  const std::string json = CovarianceSummaryJson(covariance, model).dump(2);
+  const std::string map = RenderMap(covariance, model);
+  fs::create_directories(folder);
+  WriteFilesAtomically(
+      {{folder / "covariance.bin",
+        [&](std::ostream& out) { WriteSidecar(covariance, model, out); }},
+       {folder / "covariance.json",
+        [&](std::ostream& out) { out << json << "\n"; }},
+       {folder / "cameras.csv",
+        [&](std::ostream& out) { WriteCamerasCsv(covariance, model, out); }},
+       {folder / "points.ply",
+        [&](std::ostream& out) { WritePointsPly(covariance, model, out); }},
+       {folder / "uncertainty_map.png",
+        [&](std::ostream& out) { out << map; }}},
+      true);
+}
+
+BundleCovariance ReadCovarianceSidecar(const std::filesystem::path& path,
+                                       const Reconstruction& model) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ErrorAt(path.string(), ": cannot open");
+  char magic[8];
+  in.read(magic, sizeof(magic));
+  if (!in || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) {
+    throw ErrorAt(path.string(), ": not a uwmetric covariance sidecar");
+  }
+  if (Get<uint64_t>(in, path) != Fingerprint(model)) {
+    throw ErrorAt(path.string(),
+                  ": the covariance belongs to another model (its images or "
+                  "points differ from this one's)");
+  }
+  BundleCovariance covariance;
+  const uint8_t gauge = Get<uint8_t>(in, path);
+  if (gauge > static_cast<uint8_t>(CovarianceGauge::kFreeNetwork)) {
+    throw ErrorAt(path.string(), ": unknown gauge ", int{gauge});
+  }
+  covariance.gauge = static_cast<CovarianceGauge>(gauge);
+  covariance.pixel_sigma_px = Get<double>(in, path);
+  const uint64_t num_images = Get<uint64_t>(in, path);
+  const uint64_t num_points = Get<uint64_t>(in, path);
+  if (num_images != model.Images().size()) {
+    throw ErrorAt(path.string(), ": ", num_images, " images, the model has ",
+                  model.Images().size());
+  }
+  const auto read_doubles = [&](double* data, int count) {
+    in.read(reinterpret_cast<char*>(data), sizeof(double) * count);
+    if (!in) throw ErrorAt(path.string(), ": truncated covariance sidecar");
+  };
+  for (uint64_t k = 0; k < num_images; ++k) {
+    ImageCovariance image;
+    image.image_id = Get<uint32_t>(in, path);
+    image.held = Get<uint8_t>(in, path) != 0;
+    image.num_points = Get<int32_t>(in, path);
+    Eigen::Vector3d center;
+    read_doubles(center.data(), 3);
+    read_doubles(image.rotation_center.data(), 36);
+    const Image* model_image = model.FindImage(image.image_id);
+    if (model_image == nullptr ||
+        !Close(model_image->ProjectionCenter(), center)) {
+      throw ErrorAt(path.string(), ": image ", image.image_id,
+                    " is not where the covariance was computed (another "
+                    "model, or one adjusted since)");
+    }
+    covariance.images.push_back(image);
+  }
+  for (uint64_t k = 0; k < num_points; ++k) {
+    PointCovariance point;
+    point.point3D_id = Get<uint64_t>(in, path);
+    point.track_length = Get<int32_t>(in, path);
+    Eigen::Vector3d xyz;
+    read_doubles(xyz.data(), 3);
+    read_doubles(point.xyz.data(), 9);
+    const Point3D* model_point = model.FindPoint3D(point.point3D_id);
+    if (model_point == nullptr || !Close(model_point->xyz, xyz)) {
+      throw ErrorAt(path.string(), ": point ", point.point3D_id,
+                    " is not where the covariance was computed (another "
+                    "model, or one adjusted since)");
+    }
+    covariance.points.push_back(point);
+  }
+  in.peek();
+  if (!in.eof()) throw ErrorAt(path.string(), ": trailing bytes");
+  return covariance;
+}
+
+}  // namespace uw
