@@ -31,6 +31,9 @@ void BundleCovarianceOptions::Check() const {
     throw ErrorAt("the pixel sigma (", pixel_sigma_px,
                   " px) must be >= 0 (0: estimated)");
   }
+  if (num_samples < 0) {
+    throw ErrorAt("the number of samples (", num_samples, ") must be >= 0");
+  }
 }
 
 }  // namespace uw

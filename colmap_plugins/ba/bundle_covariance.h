@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include "colmap_plugins/ba/covariance_samples.h"
 #include "colmap_plugins/ba/nav_bundle_adjuster.h"
 #include "colmap_plugins/scene/model.h"
 
@@ -41,6 +42,11 @@ struct BundleCovarianceOptions {
   bool point_marginals = true;
   // Cross-covariances of image pairs that see a common point.
   bool covisible_cross = false;
+  // Joint draws of the whole model's error (covariance_samples.h), for a
+  // Monte Carlo downstream; 0: none. Memory and samples.bin grow as
+  // num_samples x (12 bytes per point + 24 per image).
+  int num_samples = 0;
+  uint64_t sample_seed = 0;
 
   void Check() const;
 };
@@ -91,6 +97,8 @@ struct BundleCovariance {
   std::map<int, Eigen::Matrix3d> dive_offsets;  // non-reference dives
   std::vector<PointCovariance> points;
   std::vector<ImagePairCovariance> covisible;
+  // When num_samples > 0: the draws, their similarity removed.
+  CovarianceSamples samples;
   // Where the linearised covariance is not to be trusted (printed, and in
   // covariance.json): a focal length whose sigma exceeds
   // kPoorFocalLengthFraction of itself.

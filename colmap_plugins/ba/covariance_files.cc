@@ -25,9 +25,9 @@ constexpr char kMagic[8] = {'U', 'W', 'C', 'O', 'V', 0, 0, 1};
 // chi^2 with 3 degrees of freedom at 95 %.
 constexpr double kChi2ThreeDof95 = 7.814727903251178;
 
-// FNV-1a over the model's structure: which images (ids, names, cameras) and
-// points (ids, track lengths) the covariance belongs to.
-uint64_t Fingerprint(const Reconstruction& model) {
+}  // namespace
+
+uint64_t ModelFingerprint(const Reconstruction& model) {
   uint64_t hash = 1469598103934665603ull;
   const auto add = [&](const void* data, size_t size) {
     const unsigned char* bytes = static_cast<const unsigned char*>(data);
@@ -48,6 +48,8 @@ uint64_t Fingerprint(const Reconstruction& model) {
   }
   return hash;
 }
+
+namespace {
 
 double Median(std::vector<double> values) {
   if (values.empty()) return 0.0;
@@ -92,7 +94,7 @@ bool Close(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 void WriteSidecar(const BundleCovariance& covariance,
                   const Reconstruction& model, std::ostream& out) {
   out.write(kMagic, sizeof(kMagic));
-  Put<uint64_t>(out, Fingerprint(model));
+  Put<uint64_t>(out, ModelFingerprint(model));
   Put<uint8_t>(out, static_cast<uint8_t>(covariance.gauge));
   Put<double>(out, covariance.pixel_sigma_px);
   Put<uint64_t>(out, covariance.images.size());
@@ -229,7 +231,7 @@ nlohmann::json CovarianceSummaryJson(const BundleCovariance& covariance,
                     {"inverse", covariance.inverse_time_s},
                     {"total", covariance.total_time_s}};
   json["warnings"] = covariance.warnings;
-  json["model_fingerprint"] = fmt::format("{:016x}", Fingerprint(model));
+  json["model_fingerprint"] = fmt::format("{:016x}", ModelFingerprint(model));
   json["cameras"] = nlohmann::json::array();
   for (const CameraCovariance& camera : covariance.cameras) {
     nlohmann::json entry;
@@ -281,6 +283,23 @@ nlohmann::json CovarianceSummaryJson(const BundleCovariance& covariance,
       {"num_weak", std::count_if(sigmas.begin(), sigmas.end(),
                                  [&](double s) { return s > 3.0 * median; })},
       {"weak_rule", "largest-axis sigma > 3x the median"}};
+  const CovarianceSamples& samples = covariance.samples;
+  if (samples.NumSamples() > 0) {
+    const double mean = samples.log_scale.mean();
+    const double sigma =
+        std::sqrt((samples.log_scale.array() - mean).square().sum() /
+                  std::max(1, samples.NumSamples() - 1));
+    json["samples"] = {
+        {"file", "samples.bin"},
+        {"count", samples.NumSamples()},
+        {"similarity", "removed from each draw (deformation only)"},
+        {"log_scale_sigma", sigma},
+        {"log_scale_meaning",
+         covariance.gauge == CovarianceGauge::kPriors
+             ? "the navigation's own scale uncertainty (the priors fix the "
+               "datum)"
+             : "the gauge's, not a measurement: no priors fix the scale"}};
+  }
   return json;
 }
 
@@ -290,18 +309,26 @@ void WriteCovarianceFiles(const BundleCovariance& covariance,
   const std::string json = CovarianceSummaryJson(covariance, model).dump(2);
   const std::string map = RenderMap(covariance, model);
   fs::create_directories(folder);
-  WriteFilesAtomically(
-      {{folder / "covariance.bin",
-        [&](std::ostream& out) { WriteSidecar(covariance, model, out); }},
-       {folder / "covariance.json",
-        [&](std::ostream& out) { out << json << "\n"; }},
-       {folder / "cameras.csv",
-        [&](std::ostream& out) { WriteCamerasCsv(covariance, model, out); }},
-       {folder / "points.ply",
-        [&](std::ostream& out) { WritePointsPly(covariance, model, out); }},
-       {folder / "uncertainty_map.png",
-        [&](std::ostream& out) { out << map; }}},
-      true);
+  std::vector<PendingFile> files = {
+      {folder / "covariance.bin",
+       [&](std::ostream& out) { WriteSidecar(covariance, model, out); }},
+      {folder / "covariance.json",
+       [&](std::ostream& out) { out << json << "\n"; }},
+      {folder / "cameras.csv",
+       [&](std::ostream& out) { WriteCamerasCsv(covariance, model, out); }},
+      {folder / "points.ply",
+       [&](std::ostream& out) { WritePointsPly(covariance, model, out); }},
+      {folder / "uncertainty_map.png", [&](std::ostream& out) { out << map; }}};
+  if (covariance.samples.NumSamples() > 0) {
+    files.push_back({folder / "samples.bin", [&](std::ostream& out) {
+                       WriteCovarianceSamples(covariance.samples, model, out);
+                     }});
+  }
+  WriteFilesAtomically(files, true);
+  // Draws of an earlier run would pass for this one's (same model).
+  if (covariance.samples.NumSamples() == 0) {
+    fs::remove(folder / "samples.bin");
+  }
 }
 
 BundleCovariance ReadCovarianceSidecar(const std::filesystem::path& path,
@@ -313,7 +340,7 @@ BundleCovariance ReadCovarianceSidecar(const std::filesystem::path& path,
   if (!in || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) {
     throw ErrorAt(path.string(), ": not a uwmetric covariance sidecar");
   }
-  if (Get<uint64_t>(in, path) != Fingerprint(model)) {
+  if (Get<uint64_t>(in, path) != ModelFingerprint(model)) {
     throw ErrorAt(path.string(),
                   ": the covariance belongs to another model (its images or "
                   "points differ from this one's)");

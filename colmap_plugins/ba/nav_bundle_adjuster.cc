@@ -159,6 +159,13 @@ class Adjustment {
   NavBundleAdjustmentReport Run();
   // The covariance at the current parameters (bundle_covariance.h).
   BundleCovariance Covariance(const BundleCovarianceOptions& options);
+  // The engine's tangent draws as the model's deltas, similarity removed.
+  CovarianceSamples ConvertSamples(
+      const SchurCovariance& covariance,
+      const std::vector<size_t>& camera_variables,
+      const std::vector<Eigen::MatrixXd>& embeddings,
+      const std::vector<point3D_t>& point_ids,
+      const std::vector<CameraCovariance>& cameras) const;
 
  private:
   void IndexAndValidate();
@@ -1081,6 +1088,48 @@ void Adjustment::FillSimilarityNullSpace(
   }
 }
 
+CovarianceSamples Adjustment::ConvertSamples(
+    const SchurCovariance& covariance,
+    const std::vector<size_t>& camera_variables,
+    const std::vector<Eigen::MatrixXd>& embeddings,
+    const std::vector<point3D_t>& point_ids,
+    const std::vector<CameraCovariance>& cameras) const {
+  const Eigen::MatrixXd& tangent = covariance.samples;
+  const int m = static_cast<int>(tangent.cols());
+  const std::vector<Image>& images = reconstruction_->Images();
+  CovarianceSamples samples;
+  int camera_rows = 0;
+  for (const CameraCovariance& camera : cameras) {
+    samples.camera_ids.push_back(camera.camera_id);
+    samples.camera_param_indices.push_back(camera.param_indices);
+    camera_rows += static_cast<int>(camera.param_indices.size());
+  }
+  samples.camera_deltas.resize(camera_rows, m);
+  int row = 0;
+  for (size_t v = 0; v < camera_variables.size(); ++v) {
+    // A SubsetManifold's tangent is the refined parameters in order.
+    const int size = static_cast<int>(cameras[v].param_indices.size());
+    samples.camera_deltas.middleRows(row, size) = tangent.middleRows(
+        covariance.sample_row_of_reduced[images.size() + v], size);
+    row += size;
+  }
+  samples.image_deltas.resize(6 * images.size(), m);
+  for (size_t i = 0; i < images.size(); ++i) {
+    samples.image_ids.push_back(images[i].image_id);
+    samples.image_deltas.middleRows(6 * i, 6) =
+        (embeddings[i] * tangent.middleRows(covariance.sample_row_of_reduced[i],
+                                            embeddings[i].cols()))
+            .cast<float>();
+  }
+  samples.point3D_ids = point_ids;
+  samples.point_deltas =
+      tangent.middleRows(covariance.sample_row_of_points, 3 * point_ids.size())
+          .cast<float>();
+  SeparateSimilarity(*reconstruction_, &samples);
+  samples.Index();
+  return samples;
+}
+
 BundleCovariance Adjustment::Covariance(
     const BundleCovarianceOptions& options) {
   const auto start = Clock::now();
@@ -1165,6 +1214,8 @@ BundleCovariance Adjustment::Covariance(
   SchurCovarianceOptions schur;
   schur.point_marginals = options.point_marginals;
   schur.covisible_cross = options.covisible_cross;
+  schur.num_samples = options.num_samples;
+  schur.sample_seed = options.sample_seed;
   if (options.gauge == CovarianceGauge::kFreeNetwork) {
     FillSimilarityNullSpace(problem, point_ids, &schur);
   }
@@ -1278,6 +1329,10 @@ BundleCovariance Adjustment::Covariance(
     cross.image_id2 = images[b].image_id;
     cross.rotation_center = embeddings[a] * block * embeddings[b].transpose();
     result.covisible.push_back(cross);
+  }
+  if (options.num_samples > 0) {
+    result.samples = ConvertSamples(covariance, camera_variables, embeddings,
+                                    point_ids, result.cameras);
   }
   result.num_residuals = covariance.num_residuals;
   result.num_reduced_coordinates = covariance.num_reduced_coordinates;

@@ -16,6 +16,7 @@
 #include <Eigen/SparseCore>
 
 #include "common/util/error.h"
+#include "common/util/random.h"
 
 namespace uw {
 
@@ -25,6 +26,9 @@ void SchurCovarianceOptions::Check() const {
   }
   if (!(min_reciprocal_condition >= 0.0 && min_reciprocal_condition < 1.0)) {
     throw ErrorAt("min_reciprocal_condition must be in [0, 1)");
+  }
+  if (num_samples < 0) {
+    throw ErrorAt("num_samples must be >= 0, got ", num_samples);
   }
 }
 
@@ -241,6 +245,7 @@ class Computation {
     const SparseInverse inverse(*factor_);
     ReadMarginals(inverse);
     if (gauge_dimension_ > 0) ProjectOntoGaugeComplement();
+    if (options_.num_samples > 0) DrawSamples();
     result_.inverse_time_s = Seconds(start);
     return std::move(result_);
   }
@@ -863,7 +868,56 @@ class Computation {
     if (!options_.point_marginals) result_.points.clear();
   }
 
-  Eigen::MatrixXd SolveReduced(const Eigen::MatrixXd& rhs) {
+  void DrawSamples() {
+    const int m = options_.num_samples;
+    // z: one stream per sample, so that a draw does not depend on how many
+    // others are drawn after it.
+    std::vector<SplitMix64Stream> streams;
+    for (int s = 0; s < m; ++s) {
+      streams.emplace_back(SplitMix64(SplitMix64(options_.sample_seed) ^
+                                      SplitMix64(static_cast<uint64_t>(s))));
+    }
+    Eigen::MatrixXd z(num_kept_, m);
+    for (int s = 0; s < m; ++s) {
+      for (int r = 0; r < num_kept_; ++r) z(r, s) = streams[s].Gaussian();
+    }
+    // Reduced, scaled: x~_c = P^T L^-T z has covariance S~^-1.
+    const Eigen::MatrixXd x_kept =
+        SolveFactor(CHOLMOD_Pt, SolveFactor(CHOLMOD_Lt, z));
+    const int num_reduced_full = num_reduced_columns_;
+    Eigen::MatrixXd x = Eigen::MatrixXd::Zero(owners_.size(), m);
+    for (int c = 0; c < num_reduced_full; ++c) {
+      if (owners_[c].kept >= 0) x.row(c) = x_kept.row(owners_[c].kept);
+    }
+    for (size_t j = 0; j < points_.size(); ++j) {
+      Eigen::MatrixXd coupled = Eigen::MatrixXd::Zero(3, m);
+      for (size_t e = coupling_begin_[j]; e < coupling_begin_[j + 1]; ++e) {
+        const int a = couplings_[e].reduced;
+        const Eigen::Map<const Eigen::MatrixXd> b_a(
+            coupling_pool_.data() + couplings_[e].offset, kept_dim_[a], 3);
+        coupled.noalias() -=
+            b_a.transpose() * x_kept.middleRows(kept_offset_[a], kept_dim_[a]);
+      }
+      const Eigen::Matrix3d root = point_inverse_[j].llt().matrixL();
+      Eigen::MatrixXd own(3, m);
+      for (int s = 0; s < m; ++s) {
+        for (int k = 0; k < 3; ++k) own(k, s) = streams[s].Gaussian();
+      }
+      x.middleRows(num_reduced_full + 3 * static_cast<int>(j), 3) =
+          point_inverse_[j] * coupled + root * own;
+    }
+    x = column_scale_.asDiagonal() * x;
+    // Free network: P x has covariance P G P = Lambda^+.
+    if (gauge_dimension_ > 0) {
+      x -= null_basis_ * (null_basis_.transpose() * x);
+    }
+    result_.samples = std::move(x);
+    result_.sample_row_of_reduced = reduced_first_column_;
+    result_.sample_row_of_points = num_reduced_full;
+  }
+
+  // CHOLMOD's solve of `system` (CHOLMOD_A, _Lt, _Pt, ...) with the factor.
+  Eigen::MatrixXd SolveFactor(int system, const Eigen::MatrixXd& rhs) {
     cholmod_common* common = cholmod_.get();
     cholmod_dense b;
     b.nrow = rhs.rows();
@@ -875,11 +929,15 @@ class Computation {
     b.xtype = CHOLMOD_REAL;
     b.dtype = CHOLMOD_DOUBLE;
     std::unique_ptr<cholmod_dense, CholmodDeleter> x(
-        cholmod_solve(CHOLMOD_A, factor_.get(), &b, common),
+        cholmod_solve(system, factor_.get(), &b, common),
         CholmodDeleter{common});
-    if (!x) throw ErrorAt("CHOLMOD failed to solve the reduced system");
+    if (!x) throw ErrorAt("CHOLMOD failed to solve with the reduced system");
     return Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(x->x),
                                              rhs.rows(), rhs.cols());
+  }
+
+  Eigen::MatrixXd SolveReduced(const Eigen::MatrixXd& rhs) {
+    return SolveFactor(CHOLMOD_A, rhs);
   }
 
   ceres::Problem* problem_;

@@ -23,6 +23,7 @@
 // (any such G is a generalised inverse, and P G P is the same for all).
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
@@ -62,6 +63,13 @@ struct SchurCovarianceOptions {
   // An information matrix whose Cholesky has a reciprocal condition number
   // (CHOLMOD's estimate) below this is treated as rank deficient.
   double min_reciprocal_condition = 1e-14;
+  // Joint draws from the whole posterior N(x*, Lambda^-1) (Lambda^+ for a
+  // free network), correlations between every variable kept: the reduced
+  // part as P^T L^-T z from the same factor, each point conditionally on
+  // it, x_j = -C_j^-1 B_j^T x_c + C_j^-1/2 z_j. What a Monte Carlo
+  // downstream (the laser scale) re-samples a model with. 0: none.
+  int num_samples = 0;
+  uint64_t sample_seed = 0;  // the draws depend on it alone (any threads)
 
   void Check() const;
 };
@@ -74,6 +82,13 @@ struct SchurCovariance {
   // (a, b), a < b: the cross-covariance of two reduced variables that share
   // a residual (rows a's coordinates, columns b's), when covisible_cross.
   std::map<std::pair<int, int>, Eigen::MatrixXd> cross;
+  // num_samples draws of the tangent-space error, one per column; rows:
+  // every reduced variable's coordinates (from sample_row_of_reduced[a],
+  // its full tangent size), then each point's 3 (from sample_row_of_points
+  // + 3 j). Zero at constant blocks and held coordinates.
+  Eigen::MatrixXd samples;
+  std::vector<int> sample_row_of_reduced;
+  int sample_row_of_points = 0;
 
   int num_residuals = 0;
   int num_reduced_coordinates = 0;

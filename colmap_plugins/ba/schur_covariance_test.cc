@@ -372,6 +372,63 @@ TEST(SchurCovariance, FreeNetworkIsTheMinimumNormPseudoInverse) {
   EXPECT_LT(error, 1e-9);
 }
 
+// The joint draws against the whole dense information matrix, not only the
+// blocks the engine reports: whitened by Lambda's eigenvectors of nonzero
+// eigenvalue, y = diag(sqrt(lambda)) V^T x, they must have covariance I (n
+// of them, n - 7 for a free network). The sample covariance of N draws
+// misses I by |C - I|_F^2 = n (n + 1) / N on average; a sampler that drew
+// points apart from the cameras, or from the held gauge without the
+// projection, misses by far more.
+TEST(SchurCovariance, SamplesHaveTheWholeCovariance) {
+  for (const Gauge gauge : {Gauge::kPriors, Gauge::kHeld, Gauge::kFree}) {
+    SmallProblem problem(gauge, false);
+    SchurCovarianceOptions options;
+    options.num_samples = 20000;
+    options.sample_seed = 5;
+    if (gauge == Gauge::kFree) problem.FillNullSpace(&options);
+    const SchurCovariance covariance = ComputeSchurCovariance(
+        &problem.problem(), problem.reduced(), problem.points(), options);
+    const Eigen::MatrixXd information = problem.DenseInformation();
+    ASSERT_EQ(covariance.samples.rows(), information.rows());
+    ASSERT_EQ(covariance.samples.cols(), options.num_samples);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(information);
+    const Eigen::VectorXd values = eigen.eigenvalues();
+    const int skip = gauge == Gauge::kFree ? 7 : 0;
+    const int n = static_cast<int>(values.size()) - skip;
+    const Eigen::MatrixXd y = values.tail(n).cwiseSqrt().asDiagonal() *
+                              eigen.eigenvectors().rightCols(n).transpose() *
+                              covariance.samples;
+    const double count = static_cast<double>(options.num_samples);
+    const Eigen::MatrixXd sample_covariance = y * y.transpose() / count;
+    const double miss =
+        (sample_covariance - Eigen::MatrixXd::Identity(n, n)).norm();
+    const double expected = std::sqrt(n * (n + 1.0) / count);
+    // What the draws put in the null space (free network: nothing).
+    const double in_null_space =
+        skip > 0 ? (eigen.eigenvectors().leftCols(skip).transpose() *
+                    covariance.samples)
+                           .norm() /
+                       covariance.samples.norm()
+                 : 0.0;
+    std::cout << "[ figures ] samples, "
+              << (gauge == Gauge::kPriors ? "priors"
+                  : gauge == Gauge::kHeld ? "held"
+                                          : "free network")
+              << ": |C - I|_F " << miss << " against " << expected
+              << " expected of " << options.num_samples << " exact draws (n "
+              << n << "); share in the null space " << in_null_space << "\n";
+    EXPECT_GT(miss, 0.9 * expected);
+    EXPECT_LT(miss, 1.1 * expected);
+    EXPECT_LT(in_null_space, 1e-8);
+    // A draw depends on the seed and its index, not on how many are drawn
+    // (to rounding: CHOLMOD solves several columns in blocks).
+    options.num_samples = 3;
+    const SchurCovariance fewer = ComputeSchurCovariance(
+        &problem.problem(), problem.reduced(), problem.points(), options);
+    EXPECT_TRUE(fewer.samples.isApprox(covariance.samples.leftCols(3), 1e-12));
+  }
+}
+
 TEST(SchurCovariance, ExplainsWhatHasNoCovariance) {
   {
     // No priors, nothing held: the similarity is free.

@@ -97,6 +97,12 @@ void AddCovarianceFlags(CommandLine* cli, BundleCovarianceOptions* options) {
   cli->Add("--Covariance.covisible", &options->covisible_cross,
            "Also the cross-covariances of image pairs that see a common "
            "point (in memory; not written yet)");
+  cli->Add("--Covariance.samples", &options->num_samples,
+           "Joint draws of the model's error, similarity removed, written "
+           "to samples.bin for a Monte Carlo that re-samples the model "
+           "(e.g. 200; docs/covariance.md); 0: none");
+  cli->Add("--Covariance.sample_seed", &options->sample_seed,
+           "Seed of the draws (they depend on it alone)");
 }
 
 // The covariance of `model`, its summary and warnings printed.
@@ -143,7 +149,8 @@ void WriteCovariance(const BundleCovariance& covariance,
   WriteCovarianceFiles(covariance, model, folder);
   PrintLine("Wrote " + folder.string() +
             " (covariance.bin, covariance.json, cameras.csv, points.ply, "
-            "uncertainty_map.png)");
+            "uncertainty_map.png" +
+            (covariance.samples.NumSamples() > 0 ? ", samples.bin)" : ")"));
 }
 
 void AddBundleAdjusterFlags(CommandLine* cli, BundleAdjusterOptions* options) {

@@ -1,0 +1,263 @@
+#include "colmap_plugins/ba/covariance_samples.h"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include "colmap_plugins/ba/covariance_files.h"
+#include "common/util/error.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kMagic[8] = {'U', 'W', 'S', 'M', 'P', 0, 0, 1};
+
+template <typename T>
+void Put(std::ostream& out, const T& value) {
+  out.write(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+template <typename T>
+T Get(std::istream& in, const fs::path& path) {
+  T value;
+  in.read(reinterpret_cast<char*>(&value), sizeof(T));
+  if (!in) throw ErrorAt(path.string(), ": truncated samples file");
+  return value;
+}
+
+template <typename Derived>
+void GetColumn(std::istream& in, const fs::path& path,
+               Eigen::DenseBase<Derived>* column) {
+  using Scalar = typename Derived::Scalar;
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> values(column->rows());
+  in.read(reinterpret_cast<char*>(values.data()),
+          sizeof(Scalar) * values.size());
+  if (!in) throw ErrorAt(path.string(), ": truncated samples file");
+  *column = values;
+}
+
+}  // namespace
+
+int CovarianceSamples::CameraRow(camera_t camera_id) const {
+  const auto it = camera_rows_.find(camera_id);
+  return it == camera_rows_.end() ? -1 : it->second;
+}
+
+int CovarianceSamples::ImageRow(image_t image_id) const {
+  const auto it = image_rows_.find(image_id);
+  return it == image_rows_.end() ? -1 : it->second;
+}
+
+int CovarianceSamples::PointRow(point3D_t point3D_id) const {
+  const auto it = point_rows_.find(point3D_id);
+  return it == point_rows_.end() ? -1 : it->second;
+}
+
+void CovarianceSamples::Index() {
+  camera_rows_.clear();
+  image_rows_.clear();
+  point_rows_.clear();
+  int row = 0;
+  for (size_t c = 0; c < camera_ids.size(); ++c) {
+    if (!camera_param_indices[c].empty()) camera_rows_[camera_ids[c]] = row;
+    row += static_cast<int>(camera_param_indices[c].size());
+  }
+  for (size_t i = 0; i < image_ids.size(); ++i) {
+    image_rows_[image_ids[i]] = 6 * static_cast<int>(i);
+  }
+  for (size_t j = 0; j < point3D_ids.size(); ++j) {
+    point_rows_[point3D_ids[j]] = 3 * static_cast<int>(j);
+  }
+}
+
+void SeparateSimilarity(const Reconstruction& model,
+                        CovarianceSamples* samples) {
+  const int num_points = static_cast<int>(samples->point3D_ids.size());
+  if (num_points < 3) {
+    throw ErrorAt("the draws hold ", num_points,
+                  " points; a similarity needs at least 3");
+  }
+  // About the centroid, so that survey coordinates far from the origin
+  // (UTM) cost no precision.
+  Eigen::Matrix3Xd nominal(3, num_points);
+  for (int j = 0; j < num_points; ++j) {
+    const Point3D* point = model.FindPoint3D(samples->point3D_ids[j]);
+    if (point == nullptr) {
+      throw ErrorAt("point ", samples->point3D_ids[j],
+                    " of the draws is not in the model");
+    }
+    nominal.col(j) = point->xyz;
+  }
+  const Eigen::Vector3d centroid = nominal.rowwise().mean();
+  nominal.colwise() -= centroid;
+  // The draws are tangent (first-order) errors, so the similarity is too:
+  // delta = omega x p + tau + sigma p = A(p) theta. An exact similarity fit
+  // (Umeyama) would leave its own second-order terms, |omega|^2 |p| / 2, as
+  // a spurious deformation: with navigation priors as the datum, omega is
+  // ~1e-2 rad and that is as large as the deformation itself.
+  const auto design = [](const Eigen::Vector3d& p) {
+    Eigen::Matrix<double, 3, 7> a;
+    a << 0.0, p.z(), -p.y(), 1.0, 0.0, 0.0, p.x(),  //
+        -p.z(), 0.0, p.x(), 0.0, 1.0, 0.0, p.y(),   //
+        p.y(), -p.x(), 0.0, 0.0, 0.0, 1.0, p.z();
+    return a;
+  };
+  const int m = static_cast<int>(samples->point_deltas.cols());
+  Eigen::Matrix<double, 7, 7> normal = Eigen::Matrix<double, 7, 7>::Zero();
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(7, m);
+  for (int j = 0; j < num_points; ++j) {
+    const Eigen::Matrix<double, 3, 7> a = design(nominal.col(j));
+    normal.noalias() += a.transpose() * a;
+    rhs.noalias() += a.transpose() *
+                     samples->point_deltas.middleRows<3>(3 * j).cast<double>();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 7, 7>> eigen(
+      normal);
+  if (!(eigen.eigenvalues()(0) > 1e-12 * eigen.eigenvalues()(6))) {
+    throw ErrorAt("the draws' points are collinear: no similarity fits them");
+  }
+  const Eigen::MatrixXd theta = normal.ldlt().solve(rhs);
+  samples->log_scale = theta.row(6).transpose();
+  for (int j = 0; j < num_points; ++j) {
+    samples->point_deltas.middleRows<3>(3 * j) -=
+        (design(nominal.col(j)) * theta).cast<float>();
+  }
+  for (size_t i = 0; i < samples->image_ids.size(); ++i) {
+    const Image* image = model.FindImage(samples->image_ids[i]);
+    if (image == nullptr) {
+      throw ErrorAt("image ", samples->image_ids[i],
+                    " of the draws is not in the model");
+    }
+    // world_from_cam' = Exp(omega) Exp(w) world_from_cam: w' = w + omega.
+    samples->image_deltas.middleRows<3>(6 * i) -=
+        theta.topRows<3>().cast<float>();
+    samples->image_deltas.middleRows<3>(6 * i + 3) -=
+        (design(image->ProjectionCenter() - centroid) * theta).cast<float>();
+  }
+}
+
+void WriteCovarianceSamples(const CovarianceSamples& samples,
+                            const Reconstruction& model, std::ostream& out) {
+  out.write(kMagic, sizeof(kMagic));
+  Put<uint64_t>(out, ModelFingerprint(model));
+  Put<uint64_t>(out, samples.camera_ids.size());
+  Put<uint64_t>(out, samples.image_ids.size());
+  Put<uint64_t>(out, samples.point3D_ids.size());
+  Put<uint64_t>(out, samples.NumSamples());
+  for (size_t c = 0; c < samples.camera_ids.size(); ++c) {
+    Put<uint32_t>(out, samples.camera_ids[c]);
+    Put<uint32_t>(out, samples.camera_param_indices[c].size());
+    for (const int index : samples.camera_param_indices[c]) {
+      Put<uint32_t>(out, index);
+    }
+  }
+  for (const image_t id : samples.image_ids) Put<uint32_t>(out, id);
+  for (const point3D_t id : samples.point3D_ids) Put<uint64_t>(out, id);
+  for (int s = 0; s < samples.NumSamples(); ++s) {
+    Put<double>(out, samples.log_scale(s));
+    const Eigen::VectorXd cameras = samples.camera_deltas.col(s);
+    const Eigen::VectorXf images = samples.image_deltas.col(s);
+    const Eigen::VectorXf points = samples.point_deltas.col(s);
+    out.write(reinterpret_cast<const char*>(cameras.data()),
+              sizeof(double) * cameras.size());
+    out.write(reinterpret_cast<const char*>(images.data()),
+              sizeof(float) * images.size());
+    out.write(reinterpret_cast<const char*>(points.data()),
+              sizeof(float) * points.size());
+  }
+}
+
+CovarianceSamples ReadCovarianceSamples(const std::filesystem::path& path,
+                                        const Reconstruction& model) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ErrorAt(path.string(), ": cannot open");
+  char magic[8];
+  in.read(magic, sizeof(magic));
+  if (!in || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) {
+    throw ErrorAt(path.string(), ": not a uwmetric samples file");
+  }
+  if (Get<uint64_t>(in, path) != ModelFingerprint(model)) {
+    throw ErrorAt(path.string(),
+                  ": the samples belong to another model (its images or "
+                  "points differ from this one's)");
+  }
+  const uint64_t num_cameras = Get<uint64_t>(in, path);
+  const uint64_t num_images = Get<uint64_t>(in, path);
+  const uint64_t num_points = Get<uint64_t>(in, path);
+  const uint64_t num_samples = Get<uint64_t>(in, path);
+  if (num_cameras > model.Cameras().size() ||
+      num_images > model.Images().size() ||
+      num_points > model.Points3D().size()) {
+    throw ErrorAt(path.string(), ": more cameras, images or points than the ",
+                  "model has");
+  }
+  CovarianceSamples samples;
+  int num_camera_rows = 0;
+  for (uint64_t c = 0; c < num_cameras; ++c) {
+    samples.camera_ids.push_back(Get<uint32_t>(in, path));
+    const uint32_t count = Get<uint32_t>(in, path);
+    const Camera* camera = model.FindCamera(samples.camera_ids.back());
+    if (camera == nullptr || count > camera->params.size()) {
+      throw ErrorAt(path.string(), ": camera ", samples.camera_ids.back(),
+                    " is not the model's");
+    }
+    samples.camera_param_indices.emplace_back();
+    for (uint32_t k = 0; k < count; ++k) {
+      const uint32_t index = Get<uint32_t>(in, path);
+      if (index >= camera->params.size()) {
+        throw ErrorAt(path.string(), ": camera ", camera->camera_id,
+                      " has no parameter ", index);
+      }
+      samples.camera_param_indices.back().push_back(static_cast<int>(index));
+    }
+    num_camera_rows += static_cast<int>(count);
+  }
+  for (uint64_t i = 0; i < num_images; ++i) {
+    samples.image_ids.push_back(Get<uint32_t>(in, path));
+    if (model.FindImage(samples.image_ids.back()) == nullptr) {
+      throw ErrorAt(path.string(), ": image ", samples.image_ids.back(),
+                    " is not in the model");
+    }
+  }
+  for (uint64_t j = 0; j < num_points; ++j) {
+    samples.point3D_ids.push_back(Get<uint64_t>(in, path));
+    if (model.FindPoint3D(samples.point3D_ids.back()) == nullptr) {
+      throw ErrorAt(path.string(), ": point ", samples.point3D_ids.back(),
+                    " is not in the model");
+    }
+  }
+  // Bounded by the file's size before anything that large is allocated.
+  const auto here = in.tellg();
+  in.seekg(0, std::ios::end);
+  const uint64_t remaining = static_cast<uint64_t>(in.tellg() - here);
+  in.seekg(here);
+  const uint64_t per_sample =
+      8 * (1 + num_camera_rows) + 4 * (6 * num_images + 3 * num_points);
+  if (remaining != per_sample * num_samples) {
+    throw ErrorAt(path.string(), ": ", remaining, " bytes of draws, expected ",
+                  per_sample * num_samples, " for ", num_samples, " draws");
+  }
+  const int m = static_cast<int>(num_samples);
+  samples.log_scale.resize(m);
+  samples.camera_deltas.resize(num_camera_rows, m);
+  samples.image_deltas.resize(6 * num_images, m);
+  samples.point_deltas.resize(3 * num_points, m);
+  for (int s = 0; s < m; ++s) {
+    samples.log_scale(s) = Get<double>(in, path);
+    auto cameras = samples.camera_deltas.col(s);
+    auto images = samples.image_deltas.col(s);
+    auto points = samples.point_deltas.col(s);
+    GetColumn(in, path, &cameras);
+    GetColumn(in, path, &images);
+    GetColumn(in, path, &points);
+  }
+  samples.Index();
+  return samples;
+}
+
+}  // namespace uw

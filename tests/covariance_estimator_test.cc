@@ -1,0 +1,164 @@
+// uwcolmap covariance_estimator and bundle_adjuster --BA.covariance 1 on
+// the uwsim survey (stock colmap's model, uwsim's navigation): the files,
+// the draws, the two commands agreeing, and what they refuse.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "common/util/file.h"
+#include "common/util/subprocess.h"
+#include "tests/support/process.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::FreshTestDir;
+using testing::Quoted;
+
+const fs::path kUwcolmap = fs::path(UW_BIN_DIR) / "uwcolmap";
+const fs::path kSurveyDir = UW_SURVEY_DIR;
+const fs::path kSimDir = kSurveyDir / "sim";
+const fs::path kSparseDir = kSurveyDir / "sparse" / "0";
+
+// --nav and the camera's mounting on the vehicle, from uwsim's options.
+std::string NavFlags() {
+  const nlohmann::json survey =
+      nlohmann::json::parse(ReadFileToString(kSimDir / "truth" / "sim.json"))
+          .at("survey_options");
+  const auto triple = [&](const char* key) {
+    std::ostringstream text;
+    text.precision(10);
+    const auto& value = survey.at(key);
+    text << value[0].get<double>() << "," << value[1].get<double>() << ","
+         << value[2].get<double>();
+    return text.str();
+  };
+  return " --nav " + Quoted(kSimDir / "nav.csv") +
+         " --mount down --lever_arm " + triple("lever_arm_m") +
+         " --boresight " + triple("boresight_deg");
+}
+
+nlohmann::json ReadJson(const fs::path& path) {
+  return nlohmann::json::parse(ReadFileToString(path));
+}
+
+// CTest runs every case in its own process, two at a time: each case has
+// its own folder.
+// A navigation-fused adjustment with its covariance and 40 draws; then
+// covariance_estimator on the adjusted model must give the same.
+TEST(CovarianceEstimator, BundleAdjusterAndEstimatorAgree) {
+  const fs::path dir = FreshTestDir("uw_covariance_estimator_agree");
+  const auto adjuster = RunProcess(
+      Quoted(kUwcolmap) + " bundle_adjuster --input_path " +
+          Quoted(kSparseDir) + " --output_path " + Quoted(dir / "ba") +
+          NavFlags() + " --BA.covariance 1 --Covariance.samples 40",
+      true);
+  ASSERT_EQ(adjuster.exit_code, 0) << adjuster.output;
+  const fs::path folder = dir / "ba" / "covariance";
+  for (const char* name :
+       {"covariance.bin", "covariance.json", "cameras.csv", "points.ply",
+        "uncertainty_map.png", "samples.bin"}) {
+    EXPECT_TRUE(fs::is_regular_file(folder / name)) << name;
+  }
+  EXPECT_NE(adjuster.output.find("samples.bin"), std::string::npos);
+  const nlohmann::json json = ReadJson(folder / "covariance.json");
+  EXPECT_EQ(json.at("gauge"), "priors");
+  EXPECT_EQ(json.at("samples").at("count"), 40);
+  EXPECT_NE(json.at("samples")
+                .at("log_scale_meaning")
+                .get<std::string>()
+                .find("navigation"),
+            std::string::npos);
+  const double scale_sigma =
+      json.at("samples").at("log_scale_sigma").get<double>();
+  std::cout << "[ figures ] survey: median centre sigma "
+            << json.at("images").at("sigma_position_m").at("median")
+            << " m, median point sigma "
+            << json.at("points").at("sigma_largest_axis_m").at("median")
+            << " m, navigation scale sigma " << scale_sigma << ", "
+            << json.at("time_s").at("total") << " s\n";
+  EXPECT_GT(scale_sigma, 0.0);
+  EXPECT_LT(scale_sigma, 0.1);  // a scale known to 10 %: not the gauge's
+  const std::string csv = ReadFileToString(folder / "cameras.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'),
+            json.at("num_images").get<long>() + 1);
+
+  const auto result =
+      RunProcess(Quoted(kUwcolmap) + " covariance_estimator --input_path " +
+                     Quoted(dir / "ba") + " --output_path " +
+                     Quoted(dir / "cov") + NavFlags(),
+                 true);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json ours = ReadJson(dir / "cov" / "covariance.json");
+  const nlohmann::json& adjusters = json;
+  EXPECT_EQ(ours.at("model_fingerprint"), adjusters.at("model_fingerprint"));
+  for (const auto& [kind, sigma] :
+       {std::pair{"images", "sigma_position_m"},
+        std::pair{"images", "sigma_rotation_deg"},
+        std::pair{"points", "sigma_largest_axis_m"}}) {
+    for (const char* statistic : {"median", "max"}) {
+      const double a = ours.at(kind).at(sigma).at(statistic).get<double>();
+      const double b = adjusters.at(kind).at(sigma).at(statistic).get<double>();
+      EXPECT_NEAR(a, b, 1e-6 * b) << kind << " " << sigma << " " << statistic;
+    }
+  }
+  // Asked for no draws: none written.
+  EXPECT_FALSE(fs::exists(dir / "cov" / "samples.bin"));
+  EXPECT_FALSE(ours.contains("samples"));
+}
+
+TEST(CovarianceEstimator, HeldGaugeOnStockColmapsModel) {
+  const fs::path out = FreshTestDir("uw_covariance_estimator_held") / "out";
+  const auto result =
+      RunProcess(Quoted(kUwcolmap) + " covariance_estimator --input_path " +
+                     Quoted(kSparseDir) + " --output_path " + Quoted(out) +
+                     " --Covariance.gauge held --Covariance.samples 5",
+                 true);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json json = ReadJson(out / "covariance.json");
+  EXPECT_EQ(json.at("gauge"), "held");
+  // Without priors the draws' scale is the gauge's, and says so.
+  EXPECT_NE(json.at("samples")
+                .at("log_scale_meaning")
+                .get<std::string>()
+                .find("not a measurement"),
+            std::string::npos);
+}
+
+TEST(CovarianceEstimator, RefusesAGaugeItCannotHaveAndWritesNothing) {
+  const fs::path dir = FreshTestDir("uw_covariance_estimator_refuses");
+  {
+    const fs::path out = dir / "no_priors";
+    const auto result =
+        RunProcess(Quoted(kUwcolmap) + " covariance_estimator --input_path " +
+                       Quoted(kSparseDir) + " --output_path " + Quoted(out),
+                   true);
+    EXPECT_NE(result.exit_code, 0);
+    EXPECT_NE(result.output.find("--Covariance.gauge held"), std::string::npos)
+        << result.output;
+    EXPECT_FALSE(fs::exists(out / "covariance.json"));
+  }
+  {
+    const fs::path out = dir / "twice";
+    const auto result =
+        RunProcess(Quoted(kUwcolmap) + " covariance_estimator --input_path " +
+                       Quoted(kSparseDir) + " --output_path " + Quoted(out) +
+                       NavFlags() + " --Covariance.gauge free_network",
+                   true);
+    EXPECT_NE(result.exit_code, 0);
+    EXPECT_NE(result.output.find("fix it twice"), std::string::npos)
+        << result.output;
+    EXPECT_FALSE(fs::exists(out / "covariance.json"));
+  }
+}
+
+}  // namespace
+}  // namespace uw
