@@ -24,6 +24,7 @@
 #include "common/util/file.h"
 #include "common/util/subprocess.h"
 #include "tests/support/process.h"
+#include "tests/support/uwsim_survey.h"
 
 namespace uw {
 namespace {
@@ -171,24 +172,12 @@ std::map<std::string, Row> ParseTable(const std::string& table) {
 
 TEST(CompareWithColmap, ScriptPrintsOneTable) {
   const fs::path dir = FreshTestDir("uw_compare_with_colmap_test");
-  const nlohmann::json survey =
-      nlohmann::json::parse(ReadFileToString(kSimDir / "truth" / "sim.json"))
-          .at("survey_options");
-  const auto triple = [&](const char* key) {
-    std::ostringstream text;
-    text.precision(10);
-    const auto& value = survey.at(key);
-    text << value[0].get<double>() << "," << value[1].get<double>() << ","
-         << value[2].get<double>();
-    return text.str();
-  };
   // The default weight (auto): lambda from the estimated noise levels.
-  const auto result = RunProcess(
-      "UWCOLMAP=" + Quoted(kUwcolmap) + " bash " + Quoted(kScript) + " " +
-          Quoted(kSimDir) + " " + Quoted(kSparseDir) + " " +
-          Quoted(dir / "out") + " --mount down --lever_arm " +
-          triple("lever_arm_m") + " --boresight " + triple("boresight_deg"),
-      true);
+  const auto result =
+      RunProcess("UWCOLMAP=" + Quoted(kUwcolmap) + " bash " + Quoted(kScript) +
+                     " " + Quoted(kSimDir) + " " + Quoted(kSparseDir) + " " +
+                     Quoted(dir / "out") + testing::SurveyMountFlags(kSimDir),
+                 true);
   ASSERT_EQ(result.exit_code, 0) << result.output;
   std::cout << result.output;
   EXPECT_EQ(ReadFileToString(dir / "out" / "table.txt"),

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <utility>
 
@@ -15,6 +14,7 @@
 #include "common/util/file.h"
 #include "common/util/subprocess.h"
 #include "tests/support/process.h"
+#include "tests/support/uwsim_survey.h"
 
 namespace uw {
 namespace {
@@ -22,28 +22,15 @@ namespace {
 namespace fs = std::filesystem;
 using testing::FreshTestDir;
 using testing::Quoted;
+using testing::SurveyMountFlags;
 
 const fs::path kUwcolmap = fs::path(UW_BIN_DIR) / "uwcolmap";
 const fs::path kSurveyDir = UW_SURVEY_DIR;
 const fs::path kSimDir = kSurveyDir / "sim";
 const fs::path kSparseDir = kSurveyDir / "sparse" / "0";
 
-// --nav and the camera's mounting on the vehicle, from uwsim's options.
 std::string NavFlags() {
-  const nlohmann::json survey =
-      nlohmann::json::parse(ReadFileToString(kSimDir / "truth" / "sim.json"))
-          .at("survey_options");
-  const auto triple = [&](const char* key) {
-    std::ostringstream text;
-    text.precision(10);
-    const auto& value = survey.at(key);
-    text << value[0].get<double>() << "," << value[1].get<double>() << ","
-         << value[2].get<double>();
-    return text.str();
-  };
-  return " --nav " + Quoted(kSimDir / "nav.csv") +
-         " --mount down --lever_arm " + triple("lever_arm_m") +
-         " --boresight " + triple("boresight_deg");
+  return " --nav " + Quoted(kSimDir / "nav.csv") + SurveyMountFlags(kSimDir);
 }
 
 nlohmann::json ReadJson(const fs::path& path) {

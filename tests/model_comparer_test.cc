@@ -13,6 +13,7 @@
 #include "common/util/file.h"
 #include "common/util/subprocess.h"
 #include "tests/support/process.h"
+#include "tests/support/uwsim_survey.h"
 
 namespace uw {
 namespace {
@@ -28,20 +29,6 @@ const fs::path kUwcolmap = fs::path(UW_BIN_DIR) / "uwcolmap";
 
 nlohmann::json ReadJson(const fs::path& path) {
   return nlohmann::json::parse(ReadFileToString(path));
-}
-
-// "--mount down --lever_arm x,y,z --boresight r,p,y" of the survey.
-std::string MountFlags() {
-  const nlohmann::json survey =
-      ReadJson(kSimDir / "truth" / "sim.json").at("survey_options");
-  const auto triple = [&](const char* key) {
-    const auto& v = survey.at(key);
-    return std::to_string(v[0].get<double>()) + "," +
-           std::to_string(v[1].get<double>()) + "," +
-           std::to_string(v[2].get<double>());
-  };
-  return " --mount down --lever_arm " + triple("lever_arm_m") +
-         " --boresight " + triple("boresight_deg");
 }
 
 // `flags` name the reference: --truth_dir (with the true surface, whose 1.2
@@ -189,7 +176,8 @@ TEST(ModelAlignerOnUwsim, NavigationByNameAndByClosestPoint) {
   for (const Case& c : cases) {
     const fs::path output = dir / c.name;
     const auto result =
-        Align(output, c.flags + MountFlags() + " --transform_path " +
+        Align(output, c.flags + testing::SurveyMountFlags(kSimDir) +
+                          " --transform_path " +
                           Quoted(dir / (std::string(c.name) + ".json")));
     ASSERT_EQ(result.exit_code, 0) << c.name << "\n" << result.output;
     const nlohmann::json compare = Compare(
@@ -222,7 +210,7 @@ TEST(ModelAlignerOnUwsim, DatabasePriorsMatchNavigation) {
   const auto import =
       RunProcess(kUwcolmap.string() + " pose_prior_importer --database_path " +
                      Quoted(dir / "database.db") + " --nav " +
-                     Quoted(true_nav) + MountFlags(),
+                     Quoted(true_nav) + testing::SurveyMountFlags(kSimDir),
                  true);
   ASSERT_EQ(import.exit_code, 0) << import.output;
   const auto by_database =
@@ -230,7 +218,8 @@ TEST(ModelAlignerOnUwsim, DatabasePriorsMatchNavigation) {
                             " --transform_path " + Quoted(dir / "db.json"));
   ASSERT_EQ(by_database.exit_code, 0) << by_database.output;
   const auto by_nav =
-      Align(dir / "nav", " --nav " + Quoted(true_nav) + MountFlags() +
+      Align(dir / "nav", " --nav " + Quoted(true_nav) +
+                             testing::SurveyMountFlags(kSimDir) +
                              " --transform_path " + Quoted(dir / "nav.json"));
   ASSERT_EQ(by_nav.exit_code, 0) << by_nav.output;
   const nlohmann::json db = ReadJson(dir / "db.json");

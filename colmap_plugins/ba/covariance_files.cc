@@ -1,8 +1,9 @@
 #include "colmap_plugins/ba/covariance_files.h"
 
+#include "colmap_plugins/ba/model_file.h"
+
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -25,32 +26,6 @@ constexpr char kMagic[8] = {'U', 'W', 'C', 'O', 'V', 0, 0, 1};
 // chi^2 with 3 degrees of freedom at 95 %.
 constexpr double kChi2ThreeDof95 = 7.814727903251178;
 
-}  // namespace
-
-uint64_t ModelFingerprint(const Reconstruction& model) {
-  uint64_t hash = 1469598103934665603ull;
-  const auto add = [&](const void* data, size_t size) {
-    const unsigned char* bytes = static_cast<const unsigned char*>(data);
-    for (size_t k = 0; k < size; ++k) {
-      hash ^= bytes[k];
-      hash *= 1099511628211ull;
-    }
-  };
-  for (const Image& image : model.Images()) {
-    add(&image.image_id, sizeof(image.image_id));
-    add(&image.camera_id, sizeof(image.camera_id));
-    add(image.name.data(), image.name.size());
-  }
-  for (const Point3D& point : model.Points3D()) {
-    const uint64_t track = point.track.size();
-    add(&point.point3D_id, sizeof(point.point3D_id));
-    add(&track, sizeof(track));
-  }
-  return hash;
-}
-
-namespace {
-
 double Median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::nth_element(values.begin(), values.begin() + values.size() / 2,
@@ -70,50 +45,32 @@ double RotationSigmaDeg(const ImageCovariance& image) {
          M_PI;
 }
 
-template <typename T>
-void Put(std::ostream& out, const T& value) {
-  out.write(reinterpret_cast<const char*>(&value), sizeof(T));
-}
-
-template <typename T>
-T Get(std::istream& in, const fs::path& path) {
-  T value;
-  in.read(reinterpret_cast<char*>(&value), sizeof(T));
-  if (!in) throw ErrorAt(path.string(), ": truncated covariance sidecar");
-  return value;
-}
-
-void PutMatrix(std::ostream& out, const double* data, int count) {
-  out.write(reinterpret_cast<const char*>(data), sizeof(double) * count);
-}
-
 bool Close(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return (a - b).norm() <= 1e-6 * (1.0 + b.norm());
 }
 
 void WriteSidecar(const BundleCovariance& covariance,
                   const Reconstruction& model, std::ostream& out) {
-  out.write(kMagic, sizeof(kMagic));
-  Put<uint64_t>(out, ModelFingerprint(model));
-  Put<uint8_t>(out, static_cast<uint8_t>(covariance.gauge));
-  Put<double>(out, covariance.pixel_sigma_px);
-  Put<uint64_t>(out, covariance.images.size());
-  Put<uint64_t>(out, covariance.points.size());
+  WriteModelFileHead(kMagic, model, out);
+  PutValue<uint8_t>(out, static_cast<uint8_t>(covariance.gauge));
+  PutValue<double>(out, covariance.pixel_sigma_px);
+  PutValue<uint64_t>(out, covariance.images.size());
+  PutValue<uint64_t>(out, covariance.points.size());
   for (const ImageCovariance& image : covariance.images) {
     const Eigen::Vector3d center =
         model.FindImage(image.image_id)->ProjectionCenter();
-    Put<uint32_t>(out, image.image_id);
-    Put<uint8_t>(out, image.held ? 1 : 0);
-    Put<int32_t>(out, image.num_points);
-    PutMatrix(out, center.data(), 3);
-    PutMatrix(out, image.rotation_center.data(), 36);
+    PutValue<uint32_t>(out, image.image_id);
+    PutValue<uint8_t>(out, image.held ? 1 : 0);
+    PutValue<int32_t>(out, image.num_points);
+    PutValues(out, center.data(), 3);
+    PutValues(out, image.rotation_center.data(), 36);
   }
   for (const PointCovariance& point : covariance.points) {
     const Eigen::Vector3d& xyz = model.FindPoint3D(point.point3D_id)->xyz;
-    Put<uint64_t>(out, point.point3D_id);
-    Put<int32_t>(out, point.track_length);
-    PutMatrix(out, xyz.data(), 3);
-    PutMatrix(out, point.xyz.data(), 9);
+    PutValue<uint64_t>(out, point.point3D_id);
+    PutValue<int32_t>(out, point.track_length);
+    PutValues(out, xyz.data(), 3);
+    PutValues(out, point.xyz.data(), 9);
   }
 }
 
@@ -333,43 +290,28 @@ void WriteCovarianceFiles(const BundleCovariance& covariance,
 
 BundleCovariance ReadCovarianceSidecar(const std::filesystem::path& path,
                                        const Reconstruction& model) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ErrorAt(path.string(), ": cannot open");
-  char magic[8];
-  in.read(magic, sizeof(magic));
-  if (!in || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) {
-    throw ErrorAt(path.string(), ": not a uwmetric covariance sidecar");
-  }
-  if (Get<uint64_t>(in, path) != ModelFingerprint(model)) {
-    throw ErrorAt(path.string(),
-                  ": the covariance belongs to another model (its images or "
-                  "points differ from this one's)");
-  }
+  std::ifstream in = OpenModelFile(path, kMagic, "covariance sidecar", model);
   BundleCovariance covariance;
-  const uint8_t gauge = Get<uint8_t>(in, path);
+  const uint8_t gauge = GetValue<uint8_t>(in, path);
   if (gauge > static_cast<uint8_t>(CovarianceGauge::kFreeNetwork)) {
     throw ErrorAt(path.string(), ": unknown gauge ", int{gauge});
   }
   covariance.gauge = static_cast<CovarianceGauge>(gauge);
-  covariance.pixel_sigma_px = Get<double>(in, path);
-  const uint64_t num_images = Get<uint64_t>(in, path);
-  const uint64_t num_points = Get<uint64_t>(in, path);
+  covariance.pixel_sigma_px = GetValue<double>(in, path);
+  const uint64_t num_images = GetValue<uint64_t>(in, path);
+  const uint64_t num_points = GetValue<uint64_t>(in, path);
   if (num_images != model.Images().size()) {
     throw ErrorAt(path.string(), ": ", num_images, " images, the model has ",
                   model.Images().size());
   }
-  const auto read_doubles = [&](double* data, int count) {
-    in.read(reinterpret_cast<char*>(data), sizeof(double) * count);
-    if (!in) throw ErrorAt(path.string(), ": truncated covariance sidecar");
-  };
   for (uint64_t k = 0; k < num_images; ++k) {
     ImageCovariance image;
-    image.image_id = Get<uint32_t>(in, path);
-    image.held = Get<uint8_t>(in, path) != 0;
-    image.num_points = Get<int32_t>(in, path);
+    image.image_id = GetValue<uint32_t>(in, path);
+    image.held = GetValue<uint8_t>(in, path) != 0;
+    image.num_points = GetValue<int32_t>(in, path);
     Eigen::Vector3d center;
-    read_doubles(center.data(), 3);
-    read_doubles(image.rotation_center.data(), 36);
+    GetValues(in, path, center.data(), 3);
+    GetValues(in, path, image.rotation_center.data(), 36);
     const Image* model_image = model.FindImage(image.image_id);
     if (model_image == nullptr ||
         !Close(model_image->ProjectionCenter(), center)) {
@@ -381,11 +323,11 @@ BundleCovariance ReadCovarianceSidecar(const std::filesystem::path& path,
   }
   for (uint64_t k = 0; k < num_points; ++k) {
     PointCovariance point;
-    point.point3D_id = Get<uint64_t>(in, path);
-    point.track_length = Get<int32_t>(in, path);
+    point.point3D_id = GetValue<uint64_t>(in, path);
+    point.track_length = GetValue<int32_t>(in, path);
     Eigen::Vector3d xyz;
-    read_doubles(xyz.data(), 3);
-    read_doubles(point.xyz.data(), 9);
+    GetValues(in, path, xyz.data(), 3);
+    GetValues(in, path, point.xyz.data(), 9);
     const Point3D* model_point = model.FindPoint3D(point.point3D_id);
     if (model_point == nullptr || !Close(model_point->xyz, xyz)) {
       throw ErrorAt(path.string(), ": point ", point.point3D_id,

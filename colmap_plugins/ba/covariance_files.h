@@ -12,7 +12,6 @@
 //   uncertainty_map.png  plan view of the points coloured by sigma.
 #pragma once
 
-#include <cstdint>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
@@ -21,10 +20,6 @@
 #include "colmap_plugins/scene/model.h"
 
 namespace uw {
-
-// FNV-1a over the model's structure: which images (ids, names, cameras) and
-// points (ids, track lengths) a covariance or its samples belong to.
-uint64_t ModelFingerprint(const Reconstruction& model);
 
 // Radius (m) of the 95 % sphere of the largest axis: sqrt(chi2_3(0.95)
 // lambda_max); the volume of the 95 % ellipsoid, (4/3) pi chi2^(3/2)

@@ -1,13 +1,12 @@
 #include "colmap_plugins/ba/covariance_samples.h"
 
 #include <cmath>
-#include <cstring>
 #include <fstream>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
-#include "colmap_plugins/ba/covariance_files.h"
+#include "colmap_plugins/ba/model_file.h"
 #include "common/util/error.h"
 
 namespace uw {
@@ -16,30 +15,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kMagic[8] = {'U', 'W', 'S', 'M', 'P', 0, 0, 1};
-
-template <typename T>
-void Put(std::ostream& out, const T& value) {
-  out.write(reinterpret_cast<const char*>(&value), sizeof(T));
-}
-
-template <typename T>
-T Get(std::istream& in, const fs::path& path) {
-  T value;
-  in.read(reinterpret_cast<char*>(&value), sizeof(T));
-  if (!in) throw ErrorAt(path.string(), ": truncated samples file");
-  return value;
-}
-
-template <typename Derived>
-void GetColumn(std::istream& in, const fs::path& path,
-               Eigen::DenseBase<Derived>* column) {
-  using Scalar = typename Derived::Scalar;
-  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> values(column->rows());
-  in.read(reinterpret_cast<char*>(values.data()),
-          sizeof(Scalar) * values.size());
-  if (!in) throw ErrorAt(path.string(), ": truncated samples file");
-  *column = values;
-}
 
 }  // namespace
 
@@ -143,53 +118,39 @@ void SeparateSimilarity(const Reconstruction& model,
 
 void WriteCovarianceSamples(const CovarianceSamples& samples,
                             const Reconstruction& model, std::ostream& out) {
-  out.write(kMagic, sizeof(kMagic));
-  Put<uint64_t>(out, ModelFingerprint(model));
-  Put<uint64_t>(out, samples.camera_ids.size());
-  Put<uint64_t>(out, samples.image_ids.size());
-  Put<uint64_t>(out, samples.point3D_ids.size());
-  Put<uint64_t>(out, samples.NumSamples());
+  WriteModelFileHead(kMagic, model, out);
+  PutValue<uint64_t>(out, samples.camera_ids.size());
+  PutValue<uint64_t>(out, samples.image_ids.size());
+  PutValue<uint64_t>(out, samples.point3D_ids.size());
+  PutValue<uint64_t>(out, samples.NumSamples());
   for (size_t c = 0; c < samples.camera_ids.size(); ++c) {
-    Put<uint32_t>(out, samples.camera_ids[c]);
-    Put<uint32_t>(out, samples.camera_param_indices[c].size());
+    PutValue<uint32_t>(out, samples.camera_ids[c]);
+    PutValue<uint32_t>(out, samples.camera_param_indices[c].size());
     for (const int index : samples.camera_param_indices[c]) {
-      Put<uint32_t>(out, index);
+      PutValue<uint32_t>(out, index);
     }
   }
-  for (const image_t id : samples.image_ids) Put<uint32_t>(out, id);
-  for (const point3D_t id : samples.point3D_ids) Put<uint64_t>(out, id);
+  for (const image_t id : samples.image_ids) PutValue<uint32_t>(out, id);
+  for (const point3D_t id : samples.point3D_ids) PutValue<uint64_t>(out, id);
   for (int s = 0; s < samples.NumSamples(); ++s) {
-    Put<double>(out, samples.log_scale(s));
-    const Eigen::VectorXd cameras = samples.camera_deltas.col(s);
-    const Eigen::VectorXf images = samples.image_deltas.col(s);
-    const Eigen::VectorXf points = samples.point_deltas.col(s);
-    out.write(reinterpret_cast<const char*>(cameras.data()),
-              sizeof(double) * cameras.size());
-    out.write(reinterpret_cast<const char*>(images.data()),
-              sizeof(float) * images.size());
-    out.write(reinterpret_cast<const char*>(points.data()),
-              sizeof(float) * points.size());
+    PutValue<double>(out, samples.log_scale(s));
+    // Columns of column-major matrices: contiguous.
+    PutValues(out, samples.camera_deltas.col(s).data(),
+              samples.camera_deltas.rows());
+    PutValues(out, samples.image_deltas.col(s).data(),
+              samples.image_deltas.rows());
+    PutValues(out, samples.point_deltas.col(s).data(),
+              samples.point_deltas.rows());
   }
 }
 
 CovarianceSamples ReadCovarianceSamples(const std::filesystem::path& path,
                                         const Reconstruction& model) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ErrorAt(path.string(), ": cannot open");
-  char magic[8];
-  in.read(magic, sizeof(magic));
-  if (!in || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) {
-    throw ErrorAt(path.string(), ": not a uwmetric samples file");
-  }
-  if (Get<uint64_t>(in, path) != ModelFingerprint(model)) {
-    throw ErrorAt(path.string(),
-                  ": the samples belong to another model (its images or "
-                  "points differ from this one's)");
-  }
-  const uint64_t num_cameras = Get<uint64_t>(in, path);
-  const uint64_t num_images = Get<uint64_t>(in, path);
-  const uint64_t num_points = Get<uint64_t>(in, path);
-  const uint64_t num_samples = Get<uint64_t>(in, path);
+  std::ifstream in = OpenModelFile(path, kMagic, "samples file", model);
+  const uint64_t num_cameras = GetValue<uint64_t>(in, path);
+  const uint64_t num_images = GetValue<uint64_t>(in, path);
+  const uint64_t num_points = GetValue<uint64_t>(in, path);
+  const uint64_t num_samples = GetValue<uint64_t>(in, path);
   if (num_cameras > model.Cameras().size() ||
       num_images > model.Images().size() ||
       num_points > model.Points3D().size()) {
@@ -199,8 +160,8 @@ CovarianceSamples ReadCovarianceSamples(const std::filesystem::path& path,
   CovarianceSamples samples;
   int num_camera_rows = 0;
   for (uint64_t c = 0; c < num_cameras; ++c) {
-    samples.camera_ids.push_back(Get<uint32_t>(in, path));
-    const uint32_t count = Get<uint32_t>(in, path);
+    samples.camera_ids.push_back(GetValue<uint32_t>(in, path));
+    const uint32_t count = GetValue<uint32_t>(in, path);
     const Camera* camera = model.FindCamera(samples.camera_ids.back());
     if (camera == nullptr || count > camera->params.size()) {
       throw ErrorAt(path.string(), ": camera ", samples.camera_ids.back(),
@@ -208,7 +169,7 @@ CovarianceSamples ReadCovarianceSamples(const std::filesystem::path& path,
     }
     samples.camera_param_indices.emplace_back();
     for (uint32_t k = 0; k < count; ++k) {
-      const uint32_t index = Get<uint32_t>(in, path);
+      const uint32_t index = GetValue<uint32_t>(in, path);
       if (index >= camera->params.size()) {
         throw ErrorAt(path.string(), ": camera ", camera->camera_id,
                       " has no parameter ", index);
@@ -218,14 +179,14 @@ CovarianceSamples ReadCovarianceSamples(const std::filesystem::path& path,
     num_camera_rows += static_cast<int>(count);
   }
   for (uint64_t i = 0; i < num_images; ++i) {
-    samples.image_ids.push_back(Get<uint32_t>(in, path));
+    samples.image_ids.push_back(GetValue<uint32_t>(in, path));
     if (model.FindImage(samples.image_ids.back()) == nullptr) {
       throw ErrorAt(path.string(), ": image ", samples.image_ids.back(),
                     " is not in the model");
     }
   }
   for (uint64_t j = 0; j < num_points; ++j) {
-    samples.point3D_ids.push_back(Get<uint64_t>(in, path));
+    samples.point3D_ids.push_back(GetValue<uint64_t>(in, path));
     if (model.FindPoint3D(samples.point3D_ids.back()) == nullptr) {
       throw ErrorAt(path.string(), ": point ", samples.point3D_ids.back(),
                     " is not in the model");
@@ -248,13 +209,13 @@ CovarianceSamples ReadCovarianceSamples(const std::filesystem::path& path,
   samples.image_deltas.resize(6 * num_images, m);
   samples.point_deltas.resize(3 * num_points, m);
   for (int s = 0; s < m; ++s) {
-    samples.log_scale(s) = Get<double>(in, path);
-    auto cameras = samples.camera_deltas.col(s);
-    auto images = samples.image_deltas.col(s);
-    auto points = samples.point_deltas.col(s);
-    GetColumn(in, path, &cameras);
-    GetColumn(in, path, &images);
-    GetColumn(in, path, &points);
+    samples.log_scale(s) = GetValue<double>(in, path);
+    GetValues(in, path, samples.camera_deltas.col(s).data(),
+              samples.camera_deltas.rows());
+    GetValues(in, path, samples.image_deltas.col(s).data(),
+              samples.image_deltas.rows());
+    GetValues(in, path, samples.point_deltas.col(s).data(),
+              samples.point_deltas.rows());
   }
   samples.Index();
   return samples;

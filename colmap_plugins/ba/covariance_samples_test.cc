@@ -119,7 +119,7 @@ TEST(CovarianceSamples, TheFileRoundTripsAndRefusesAnotherModel) {
   Reconstruction other = model;
   other.Points3D().pop_back();
   ExpectErrorContaining([&] { ReadCovarianceSamples(path, other); },
-                        "belong to another model");
+                        "belongs to another model");
   const std::string bytes = ReadFileToString(path);
   std::ofstream(folder / "short.bin", std::ios::binary)
       << bytes.substr(0, bytes.size() - 5);

@@ -825,20 +825,11 @@ class Computation {
     }
     const Eigen::MatrixXd w_kept = SolveReduced(rhs);
     // W over all coordinates (held ones 0).
-    Eigen::MatrixXd w = Eigen::MatrixXd::Zero(null_basis_.rows(), k);
-    for (int c = 0; c < num_reduced_full; ++c) {
-      if (owners_[c].kept >= 0) w.row(c) = w_kept.row(owners_[c].kept);
-    }
+    Eigen::MatrixXd w = ScatterKept(w_kept);
     for (size_t j = 0; j < points_.size(); ++j) {
-      Eigen::MatrixXd q_minus = point_rows(static_cast<int>(j));
-      for (size_t x = coupling_begin_[j]; x < coupling_begin_[j + 1]; ++x) {
-        const int a = couplings_[x].reduced;
-        const Eigen::Map<const Eigen::MatrixXd> b_a(
-            coupling_pool_.data() + couplings_[x].offset, kept_dim_[a], 3);
-        q_minus.noalias() -=
-            b_a.transpose() * w_kept.middleRows(kept_offset_[a], kept_dim_[a]);
-      }
-      w.middleRows(num_reduced_full + 3 * j, 3) = point_inverse_[j] * q_minus;
+      w.middleRows(num_reduced_full + 3 * j, 3) =
+          point_inverse_[j] *
+          (point_rows(static_cast<int>(j)) - CouplingTransposeTimes(j, w_kept));
     }
     w = column_scale_.asDiagonal() * w;
     const Eigen::MatrixXd m = null_basis_.transpose() * w;
@@ -885,19 +876,9 @@ class Computation {
     const Eigen::MatrixXd x_kept =
         SolveFactor(CHOLMOD_Pt, SolveFactor(CHOLMOD_Lt, z));
     const int num_reduced_full = num_reduced_columns_;
-    Eigen::MatrixXd x = Eigen::MatrixXd::Zero(owners_.size(), m);
-    for (int c = 0; c < num_reduced_full; ++c) {
-      if (owners_[c].kept >= 0) x.row(c) = x_kept.row(owners_[c].kept);
-    }
+    Eigen::MatrixXd x = ScatterKept(x_kept);
     for (size_t j = 0; j < points_.size(); ++j) {
-      Eigen::MatrixXd coupled = Eigen::MatrixXd::Zero(3, m);
-      for (size_t e = coupling_begin_[j]; e < coupling_begin_[j + 1]; ++e) {
-        const int a = couplings_[e].reduced;
-        const Eigen::Map<const Eigen::MatrixXd> b_a(
-            coupling_pool_.data() + couplings_[e].offset, kept_dim_[a], 3);
-        coupled.noalias() -=
-            b_a.transpose() * x_kept.middleRows(kept_offset_[a], kept_dim_[a]);
-      }
+      const Eigen::MatrixXd coupled = -CouplingTransposeTimes(j, x_kept);
       const Eigen::Matrix3d root = point_inverse_[j].llt().matrixL();
       Eigen::MatrixXd own(3, m);
       for (int s = 0; s < m; ++s) {
@@ -914,6 +895,31 @@ class Computation {
     result_.samples = std::move(x);
     result_.sample_row_of_reduced = reduced_first_column_;
     result_.sample_row_of_points = num_reduced_full;
+  }
+
+  // A matrix over the kept reduced coordinates laid out over all
+  // coordinates (rows in the Jacobian's column order; held and point rows
+  // zero).
+  Eigen::MatrixXd ScatterKept(const Eigen::MatrixXd& kept) const {
+    Eigen::MatrixXd all = Eigen::MatrixXd::Zero(owners_.size(), kept.cols());
+    for (int c = 0; c < num_reduced_columns_; ++c) {
+      if (owners_[c].kept >= 0) all.row(c) = kept.row(owners_[c].kept);
+    }
+    return all;
+  }
+
+  // B_j^T y for point j and y over the kept reduced coordinates.
+  Eigen::MatrixXd CouplingTransposeTimes(size_t j,
+                                         const Eigen::MatrixXd& kept) const {
+    Eigen::MatrixXd product = Eigen::MatrixXd::Zero(3, kept.cols());
+    for (size_t e = coupling_begin_[j]; e < coupling_begin_[j + 1]; ++e) {
+      const int a = couplings_[e].reduced;
+      const Eigen::Map<const Eigen::MatrixXd> b_a(
+          coupling_pool_.data() + couplings_[e].offset, kept_dim_[a], 3);
+      product.noalias() +=
+          b_a.transpose() * kept.middleRows(kept_offset_[a], kept_dim_[a]);
+    }
+    return product;
   }
 
   // CHOLMOD's solve of `system` (CHOLMOD_A, _Lt, _Pt, ...) with the factor.
