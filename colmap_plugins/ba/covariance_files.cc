@@ -1,7 +1,5 @@
 #include "colmap_plugins/ba/covariance_files.h"
 
-#include "colmap_plugins/ba/model_file.h"
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -11,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 #include <opencv2/imgcodecs.hpp>
 
+#include "colmap_plugins/ba/model_file.h"
 #include "common/util/csv.h"
 #include "common/util/error.h"
 #include "common/util/file.h"

@@ -12,8 +12,6 @@
 namespace uw {
 namespace {
 
-namespace fs = std::filesystem;
-
 constexpr char kMagic[8] = {'U', 'W', 'S', 'M', 'P', 0, 0, 1};
 
 }  // namespace
@@ -23,11 +21,6 @@ int CovarianceSamples::CameraRow(camera_t camera_id) const {
   return it == camera_rows_.end() ? -1 : it->second;
 }
 
-int CovarianceSamples::ImageRow(image_t image_id) const {
-  const auto it = image_rows_.find(image_id);
-  return it == image_rows_.end() ? -1 : it->second;
-}
-
 int CovarianceSamples::PointRow(point3D_t point3D_id) const {
   const auto it = point_rows_.find(point3D_id);
   return it == point_rows_.end() ? -1 : it->second;
@@ -35,19 +28,23 @@ int CovarianceSamples::PointRow(point3D_t point3D_id) const {
 
 void CovarianceSamples::Index() {
   camera_rows_.clear();
-  image_rows_.clear();
   point_rows_.clear();
   int row = 0;
   for (size_t c = 0; c < camera_ids.size(); ++c) {
     if (!camera_param_indices[c].empty()) camera_rows_[camera_ids[c]] = row;
     row += static_cast<int>(camera_param_indices[c].size());
   }
-  for (size_t i = 0; i < image_ids.size(); ++i) {
-    image_rows_[image_ids[i]] = 6 * static_cast<int>(i);
-  }
   for (size_t j = 0; j < point3D_ids.size(); ++j) {
     point_rows_[point3D_ids[j]] = 3 * static_cast<int>(j);
   }
+}
+
+Eigen::Matrix<double, 3, 7> SimilarityTangentAt(const Eigen::Vector3d& x) {
+  Eigen::Matrix<double, 3, 7> a;
+  a << 0.0, x.z(), -x.y(), 1.0, 0.0, 0.0, x.x(),  //
+      -x.z(), 0.0, x.x(), 0.0, 1.0, 0.0, x.y(),   //
+      x.y(), -x.x(), 0.0, 0.0, 0.0, 1.0, x.z();
+  return a;
 }
 
 void SeparateSimilarity(const Reconstruction& model,
@@ -71,22 +68,15 @@ void SeparateSimilarity(const Reconstruction& model,
   const Eigen::Vector3d centroid = nominal.rowwise().mean();
   nominal.colwise() -= centroid;
   // The draws are tangent (first-order) errors, so the similarity is too:
-  // delta = omega x p + tau + sigma p = A(p) theta. An exact similarity fit
+  // delta = A(p) theta (SimilarityTangentAt). An exact similarity fit
   // (Umeyama) would leave its own second-order terms, |omega|^2 |p| / 2, as
   // a spurious deformation: with navigation priors as the datum, omega is
   // ~1e-2 rad and that is as large as the deformation itself.
-  const auto design = [](const Eigen::Vector3d& p) {
-    Eigen::Matrix<double, 3, 7> a;
-    a << 0.0, p.z(), -p.y(), 1.0, 0.0, 0.0, p.x(),  //
-        -p.z(), 0.0, p.x(), 0.0, 1.0, 0.0, p.y(),   //
-        p.y(), -p.x(), 0.0, 0.0, 0.0, 1.0, p.z();
-    return a;
-  };
   const int m = static_cast<int>(samples->point_deltas.cols());
   Eigen::Matrix<double, 7, 7> normal = Eigen::Matrix<double, 7, 7>::Zero();
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(7, m);
   for (int j = 0; j < num_points; ++j) {
-    const Eigen::Matrix<double, 3, 7> a = design(nominal.col(j));
+    const Eigen::Matrix<double, 3, 7> a = SimilarityTangentAt(nominal.col(j));
     normal.noalias() += a.transpose() * a;
     rhs.noalias() += a.transpose() *
                      samples->point_deltas.middleRows<3>(3 * j).cast<double>();
@@ -100,7 +90,7 @@ void SeparateSimilarity(const Reconstruction& model,
   samples->log_scale = theta.row(6).transpose();
   for (int j = 0; j < num_points; ++j) {
     samples->point_deltas.middleRows<3>(3 * j) -=
-        (design(nominal.col(j)) * theta).cast<float>();
+        (SimilarityTangentAt(nominal.col(j)) * theta).cast<float>();
   }
   for (size_t i = 0; i < samples->image_ids.size(); ++i) {
     const Image* image = model.FindImage(samples->image_ids[i]);
@@ -112,7 +102,8 @@ void SeparateSimilarity(const Reconstruction& model,
     samples->image_deltas.middleRows<3>(6 * i) -=
         theta.topRows<3>().cast<float>();
     samples->image_deltas.middleRows<3>(6 * i + 3) -=
-        (design(image->ProjectionCenter() - centroid) * theta).cast<float>();
+        (SimilarityTangentAt(image->ProjectionCenter() - centroid) * theta)
+            .cast<float>();
   }
 }
 

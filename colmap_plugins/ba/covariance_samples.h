@@ -44,19 +44,23 @@ struct CovarianceSamples {
   Eigen::MatrixXf point_deltas;
 
   int NumSamples() const { return static_cast<int>(log_scale.size()); }
-  // First row of a camera's deltas (-1: its intrinsics were held), of an
-  // image's, of a point's (-1: not in the draws).
+  // First row of a camera's deltas (-1: its intrinsics were held), of a
+  // point's (-1: not in the draws).
   int CameraRow(camera_t camera_id) const;
-  int ImageRow(image_t image_id) const;
   int PointRow(point3D_t point3D_id) const;
   // Fills the lookups behind the *Row() functions; after the ids change.
   void Index();
 
  private:
   std::unordered_map<camera_t, int> camera_rows_;
-  std::unordered_map<image_t, int> image_rows_;
   std::unordered_map<point3D_t, int> point_rows_;
 };
+
+// How a first-order similarity theta = (omega, tau, sigma), x' = x +
+// omega x x + tau + sigma x, moves the point x: x' - x = A(x) theta, A(x) =
+// [-[x]_x | I | x]. The gauge null space of a free network and the
+// similarity removed from the draws are both made of it.
+Eigen::Matrix<double, 3, 7> SimilarityTangentAt(const Eigen::Vector3d& x);
 
 // Removes from each draw the similarity (Umeyama, every point weighted
 // alike) that maps its drawn points onto the nominal ones of `model`, from

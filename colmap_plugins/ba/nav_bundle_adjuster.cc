@@ -1079,12 +1079,7 @@ void Adjustment::FillSimilarityNullSpace(
     options->null_space_reduced.push_back(Eigen::MatrixXd::Zero(size, 7));
   }
   for (const point3D_t id : point_ids) {
-    const Eigen::Vector3d& x = points_.at(id);
-    Eigen::MatrixXd rows(3, 7);
-    rows << 0.0, x.z(), -x.y(), 1.0, 0.0, 0.0, x.x(),  //
-        -x.z(), 0.0, x.x(), 0.0, 1.0, 0.0, x.y(),      //
-        x.y(), -x.x(), 0.0, 0.0, 0.0, 1.0, x.z();
-    options->null_space_points.push_back(rows);
+    options->null_space_points.push_back(SimilarityTangentAt(points_.at(id)));
   }
 }
 

@@ -823,7 +823,7 @@ class Computation {
         rhs.middleRows(kept_offset_[a], kept_dim_[a]).noalias() -= b_a * c_q;
       }
     }
-    const Eigen::MatrixXd w_kept = SolveReduced(rhs);
+    const Eigen::MatrixXd w_kept = SolveFactor(CHOLMOD_A, rhs);
     // W over all coordinates (held ones 0).
     Eigen::MatrixXd w = ScatterKept(w_kept);
     for (size_t j = 0; j < points_.size(); ++j) {
@@ -875,7 +875,6 @@ class Computation {
     // Reduced, scaled: x~_c = P^T L^-T z has covariance S~^-1.
     const Eigen::MatrixXd x_kept =
         SolveFactor(CHOLMOD_Pt, SolveFactor(CHOLMOD_Lt, z));
-    const int num_reduced_full = num_reduced_columns_;
     Eigen::MatrixXd x = ScatterKept(x_kept);
     for (size_t j = 0; j < points_.size(); ++j) {
       const Eigen::MatrixXd coupled = -CouplingTransposeTimes(j, x_kept);
@@ -884,7 +883,7 @@ class Computation {
       for (int s = 0; s < m; ++s) {
         for (int k = 0; k < 3; ++k) own(k, s) = streams[s].Gaussian();
       }
-      x.middleRows(num_reduced_full + 3 * static_cast<int>(j), 3) =
+      x.middleRows(num_reduced_columns_ + 3 * static_cast<int>(j), 3) =
           point_inverse_[j] * coupled + root * own;
     }
     x = column_scale_.asDiagonal() * x;
@@ -894,7 +893,7 @@ class Computation {
     }
     result_.samples = std::move(x);
     result_.sample_row_of_reduced = reduced_first_column_;
-    result_.sample_row_of_points = num_reduced_full;
+    result_.sample_row_of_points = num_reduced_columns_;
   }
 
   // A matrix over the kept reduced coordinates laid out over all
@@ -940,10 +939,6 @@ class Computation {
     if (!x) throw ErrorAt("CHOLMOD failed to solve with the reduced system");
     return Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(x->x),
                                              rhs.rows(), rhs.cols());
-  }
-
-  Eigen::MatrixXd SolveReduced(const Eigen::MatrixXd& rhs) {
-    return SolveFactor(CHOLMOD_A, rhs);
   }
 
   ceres::Problem* problem_;
