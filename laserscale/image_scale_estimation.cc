@@ -48,6 +48,16 @@ std::string CopyOverlay(const std::string& image_name,
 
 }  // namespace
 
+void ImageScaleEstimationOptions::Check() const {
+  monte_carlo.Check();
+  if ((model_draws == nullptr) != (model == nullptr)) {
+    throw ErrorAt("image scale estimation: model draws need their model");
+  }
+  if (surface_points < 1) {
+    throw ErrorAt("surface_points must be >= 1, got ", surface_points);
+  }
+}
+
 const LaserSetup& FindLaserSetup(const std::vector<LaserSetup>& setups,
                                  const std::string& name,
                                  const std::string& lasers_path) {
@@ -106,12 +116,29 @@ std::vector<ImageEstimate> EstimateLaserImages(
     } else if (found == spots_by_image.end()) {
       estimate.problem = "no entry in " + options.spots_path;
     } else {
-      const LaserImage image =
-          LaserImageFromDetections(pose, *found->second, setup);
+      LaserImage image = LaserImageFromDetections(pose, *found->second, setup);
       estimate.hit_centroid = HitCentroid(image, caster);
-      estimate.result =
-          EstimateImageScale(image, static_cast<int>(i), setup, caster,
-                             options.method, options.monte_carlo);
+      if (options.model_draws != nullptr && estimate.hit_centroid) {
+        image.model =
+            DrawsForImage(*options.model_draws, *options.model, pose,
+                          *estimate.hit_centroid, options.surface_points);
+      }
+      const MonteCarloOptions& monte_carlo = options.monte_carlo;
+      estimate.result = EstimateImageScale(image, static_cast<int>(i), setup,
+                                           caster, options.method, monte_carlo);
+      if (options.variance_shares) {
+        for (const ScaleSource source : kScaleSources) {
+          if (!monte_carlo.Samples(source) ||
+              (source == ScaleSource::kModel && image.model.NumDraws() == 0)) {
+            continue;
+          }
+          estimate.result->per_source.emplace_back(
+              source,
+              EstimateImageScale(image, static_cast<int>(i), setup, caster,
+                                 options.method, monte_carlo.Only(source))
+                  .per_iteration);
+        }
+      }
       estimate.overlay = CopyOverlay(pose.name, options);
     }
     if (done) done(i, poses.size(), estimate);

@@ -10,6 +10,7 @@
 #include "common/mesh/ray_caster.h"
 #include "laserscale/laser_poses_io.h"
 #include "laserscale/laser_setup.h"
+#include "laserscale/model_draws.h"
 #include "laserscale/scale_report.h"
 #include "laserscale/spots_io.h"
 
@@ -37,8 +38,17 @@ struct ImageScaleEstimationOptions {
   // copied into report_dir/overlays for the report to link.
   std::string overlays_dir;
   std::string report_dir;
+  // Each sampled source also alone, for its share of the variance (one
+  // more Monte Carlo per source and image).
+  bool variance_shares = true;
+  // The model's draws and the model they belong to (both or neither);
+  // none: the model is taken as exact.
+  const ModelDraws* model_draws = nullptr;
+  const Reconstruction* model = nullptr;
+  // Model points whose mean delta moves the surface under an image's hits.
+  int surface_points = 8;
 
-  void Check() const { monte_carlo.Check(); }
+  void Check() const;
 };
 
 // Called after each image with its index, the number of images and its
@@ -48,7 +58,8 @@ using ImageEstimateCallback = std::function<void(
 
 // One estimate per pose, in order; an image that is not localized or has
 // no spots gets its problem instead of a result. Image i's Monte Carlo is
-// the i-th of the seed's streams (EstimateImageScale).
+// the i-th of the seed's streams (EstimateImageScale); with model draws,
+// each image's are cut from them (DrawsForImage) at its nominal hits.
 std::vector<ImageEstimate> EstimateLaserImages(
     const std::vector<LocalizedImage>& poses,
     const std::vector<ImageSpots>& spots, const LaserSetup& setup,

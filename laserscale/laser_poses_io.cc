@@ -12,7 +12,8 @@ namespace uw {
 namespace {
 
 constexpr char kFormat[] = "uwmetric-laser-poses";
-constexpr int kVersion = 1;
+// Version 2 adds each inlier's point3D_id; version 1 files still read.
+constexpr int kVersion = 2;
 
 template <typename T>
 void CheckFinite(const T& values, const std::string& where) {
@@ -46,9 +47,16 @@ std::string LaserPosesJsonText(const std::vector<LocalizedImage>& images) {
       entry["rms_error_px"] = image.rms_error_px;
       nlohmann::json inliers = nlohmann::json::array();
       for (const Correspondence2D3D& match : image.inliers) {
-        inliers.push_back({match.pixel.x(), match.pixel.y(),
-                           match.point_in_world.x(), match.point_in_world.y(),
-                           match.point_in_world.z()});
+        nlohmann::json row = {
+            match.pixel.x(), match.pixel.y(), match.point_in_world.x(),
+            match.point_in_world.y(), match.point_in_world.z()};
+        // -1: the match has no model point id (made by another program).
+        if (match.point3D_id == kInvalidPoint3DId) {
+          row.push_back(-1);
+        } else {
+          row.push_back(match.point3D_id);
+        }
+        inliers.push_back(row);
       }
       entry["inliers"] = inliers;
     }
@@ -57,7 +65,8 @@ std::string LaserPosesJsonText(const std::vector<LocalizedImage>& images) {
   const nlohmann::json json = {
       {"format", kFormat},
       {"version", kVersion},
-      {"inliers", "[x, y, X, Y, Z]: COLMAP pixel, model point"},
+      {"inliers",
+       "[x, y, X, Y, Z, point3D_id]: COLMAP pixel, model point (-1: no id)"},
       {"images", json_images}};
   return json.dump(1) + "\n";
 }
@@ -66,7 +75,8 @@ std::vector<LocalizedImage> ParseLaserPosesJson(const std::string& text,
                                                 const std::string& where) {
   const nlohmann::json json = ParseJsonText(text, where);
   JsonFields file(json, where);
-  file.RequireFormat(kFormat, kVersion);
+  const int version = file.RequireFormat(kFormat, 1, kVersion);
+  const size_t row_size = version == 1 ? 5 : 6;
   std::string inliers_doc;
   nlohmann::json json_images;
   file.Read("inliers", &inliers_doc);
@@ -137,18 +147,33 @@ std::vector<LocalizedImage> ParseLaserPosesJson(const std::string& text,
         throw ErrorAt(named, ": a localized image needs its \"inliers\"");
       }
       for (size_t k = 0; k < inliers.size(); ++k) {
+        const std::string row_where =
+            named + ": inliers[" + std::to_string(k) + "]";
+        if (!inliers[k].is_array() || inliers[k].size() != row_size) {
+          throw ErrorAt(
+              row_where, " must be ",
+              version == 1 ? "[x, y, X, Y, Z]" : "[x, y, X, Y, Z, point3D_id]");
+        }
         std::vector<double> row;
-        try {
-          inliers[k].get_to(row);
-        } catch (const nlohmann::json::exception& error) {
-          throw ErrorAt(named, ": inliers[", k, "]: ", error.what());
+        for (size_t c = 0; c < 5; ++c) {
+          if (!inliers[k][c].is_number()) {
+            throw ErrorAt(row_where, ": entry ", c, " is not a number");
+          }
+          row.push_back(inliers[k][c].get<double>());
         }
-        if (row.size() != 5) {
-          throw ErrorAt(named, ": inliers[", k, "] must be [x, y, X, Y, Z]");
+        CheckFinite(row, row_where);
+        Correspondence2D3D match{Eigen::Vector2d(row[0], row[1]),
+                                 Eigen::Vector3d(row[2], row[3], row[4])};
+        if (version >= 2) {
+          const nlohmann::json& id = inliers[k][5];
+          if (id.is_number_unsigned()) {
+            match.point3D_id = id.get<point3D_t>();
+          } else if (!(id.is_number_integer() && id.get<int64_t>() == -1)) {
+            throw ErrorAt(row_where, ": point3D_id must be an id or -1, got ",
+                          id.dump());
+          }
         }
-        CheckFinite(row, named + ": inliers[" + std::to_string(k) + "]");
-        image.inliers.push_back({Eigen::Vector2d(row[0], row[1]),
-                                 Eigen::Vector3d(row[2], row[3], row[4])});
+        image.inliers.push_back(match);
       }
       if (!(image.rms_error_px >= 0.0) || !std::isfinite(image.rms_error_px)) {
         throw ErrorAt(named, ": rms_error_px must be finite and >= 0");

@@ -22,7 +22,7 @@ std::vector<LocalizedImage> Example() {
   good.num_matches = 40;
   good.num_matched_model_images = 3;
   good.rms_error_px = 0.61;
-  good.inliers = {{Eigen::Vector2d(10.5, 20.25), Eigen::Vector3d(1, 2, 3)},
+  good.inliers = {{Eigen::Vector2d(10.5, 20.25), Eigen::Vector3d(1, 2, 3), 17},
                   {Eigen::Vector2d(700.0, 300.0), Eigen::Vector3d(-1, 0, 4)}};
   LocalizedImage bad = good;
   bad.name = "L00005.png";
@@ -51,8 +51,24 @@ TEST(LaserPosesJson, RoundTrips) {
   ASSERT_EQ(read[0].inliers.size(), 2u);
   EXPECT_EQ(read[0].inliers[0].pixel, Eigen::Vector2d(10.5, 20.25));
   EXPECT_EQ(read[0].inliers[1].point_in_world, Eigen::Vector3d(-1, 0, 4));
+  EXPECT_EQ(read[0].inliers[0].point3D_id, 17u);
+  EXPECT_EQ(read[0].inliers[1].point3D_id, kInvalidPoint3DId);
   EXPECT_FALSE(read[1].success);
   EXPECT_EQ(read[1].problem, images[1].problem);
+}
+
+// Files of version 1 (inliers without point ids) still read, ids unknown.
+TEST(LaserPosesJson, ReadsVersionOne) {
+  nlohmann::json json = nlohmann::json::parse(LaserPosesJsonText(Example()));
+  json["version"] = 1;
+  for (nlohmann::json& row : json["images"][0]["inliers"]) row.erase(5);
+  const std::vector<LocalizedImage> read =
+      ParseLaserPosesJson(json.dump(), "poses.json");
+  ASSERT_EQ(read[0].inliers.size(), 2u);
+  EXPECT_EQ(read[0].inliers[0].point_in_world, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(read[0].inliers[0].point3D_id, kInvalidPoint3DId);
+  json["version"] = 3;
+  EXPECT_THROW(ParseLaserPosesJson(json.dump(), "poses.json"), Error);
 }
 
 TEST(LaserPosesJson, RejectsBadInputNamingTheImage) {
@@ -85,6 +101,12 @@ TEST(LaserPosesJson, RejectsBadInputNamingTheImage) {
   json = good;
   json["format"] = "something-else";
   expect_error(json, "uwmetric-laser-poses");
+  json = good;
+  json["images"][0]["inliers"][0][5] = -2;
+  expect_error(json, "point3D_id");
+  json = good;
+  json["images"][0]["inliers"][0].erase(5);
+  expect_error(json, "point3D_id]");
   json = good;
   json["images"][0].erase("inliers");
   expect_error(json, "inliers");

@@ -249,18 +249,31 @@ LinearizedPose::LinearizedPose(const Camera& camera,
   step_at_nominal_ = -gain_ * residuals;
 }
 
-Rigid3d LinearizedPose::Perturbed(const Eigen::VectorXd& pixel_offsets) const {
-  const Vector6d step = step_at_nominal_ + gain_ * pixel_offsets;
+namespace {
+
+// Left increment: rotation Exp(step.head(3)) applied to the pose, then the
+// translation step.
+Rigid3d StepPose(const Vector6d& step, const Rigid3d& pose) {
   const Eigen::Vector3d omega = step.head<3>();
   const double angle = omega.norm();
   const Eigen::Quaterniond delta_rotation =
       angle > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, omega / angle))
                   : Eigen::Quaterniond::Identity();
-  Rigid3d pose;
-  pose.rotation =
-      (delta_rotation * nominal_.rotation.normalized()).normalized();
-  pose.translation = delta_rotation * nominal_.translation + step.tail<3>();
-  return pose;
+  Rigid3d stepped;
+  stepped.rotation = (delta_rotation * pose.rotation.normalized()).normalized();
+  stepped.translation = delta_rotation * pose.translation + step.tail<3>();
+  return stepped;
+}
+
+}  // namespace
+
+Rigid3d LinearizedPose::Perturbed(const Eigen::VectorXd& pixel_offsets) const {
+  return StepPose(step_at_nominal_ + gain_ * pixel_offsets, nominal_);
+}
+
+Rigid3d LinearizedPose::PerturbedFrom(
+    const Rigid3d& refined, const Eigen::VectorXd& pixel_offsets) const {
+  return StepPose(gain_ * pixel_offsets, refined);
 }
 
 double PoseRmsErrorPx(const Camera& camera,

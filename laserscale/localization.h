@@ -25,6 +25,9 @@ namespace uw {
 struct Correspondence2D3D {
   Eigen::Vector2d pixel;           // COLMAP pixel convention
   Eigen::Vector3d point_in_world;  // model units and frame
+  // The model's point, when known: how the Monte Carlo finds the point's
+  // draws of the model's covariance (samples.bin).
+  point3D_t point3D_id = kInvalidPoint3DId;
 };
 
 struct LocalizationOptions {
@@ -84,6 +87,11 @@ class LinearizedPose {
 
   // offsets: (dx0, dy0, dx1, dy1, ...) px, one pair per match.
   Rigid3d Perturbed(const Eigen::VectorXd& pixel_offsets) const;
+  // The offsets' step applied to another refined pose of the same image
+  // (the pose in a draw of the model, whose Jacobian differs from the
+  // nominal one to second order only).
+  Rigid3d PerturbedFrom(const Rigid3d& refined,
+                        const Eigen::VectorXd& pixel_offsets) const;
 
  private:
   Rigid3d nominal_;

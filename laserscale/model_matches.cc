@@ -92,7 +92,7 @@ ImageModelMatches DatabaseModelMatches::For(
     matched_images.insert(other_id);
     result.matches.push_back(
         {Eigen::Vector2d(keypoints(keypoint, 0), keypoints(keypoint, 1)),
-         point->xyz});
+         point->xyz, observation.point3D_id});
   }
   result.num_matched_model_images = matched_images.size();
   return result;

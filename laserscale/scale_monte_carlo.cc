@@ -106,6 +106,43 @@ std::string Acceptance(const LaserImage& image,
 
 }  // namespace
 
+std::string ScaleSourceName(ScaleSource source) {
+  switch (source) {
+    case ScaleSource::kFeatures:
+      return "features";
+    case ScaleSource::kSpots:
+      return "spots";
+    case ScaleSource::kCalibration:
+      return "calibration";
+    case ScaleSource::kModel:
+      return "model";
+  }
+  return "?";
+}
+
+bool MonteCarloOptions::Samples(ScaleSource source) const {
+  switch (source) {
+    case ScaleSource::kFeatures:
+      return sample_features;
+    case ScaleSource::kSpots:
+      return sample_spots;
+    case ScaleSource::kCalibration:
+      return sample_calibration;
+    case ScaleSource::kModel:
+      return sample_model;
+  }
+  return false;
+}
+
+MonteCarloOptions MonteCarloOptions::Only(ScaleSource source) const {
+  MonteCarloOptions only = *this;
+  only.sample_features = source == ScaleSource::kFeatures;
+  only.sample_spots = source == ScaleSource::kSpots;
+  only.sample_calibration = source == ScaleSource::kCalibration;
+  only.sample_model = source == ScaleSource::kModel;
+  return only;
+}
+
 void MonteCarloOptions::Check() const {
   if (num_iterations < 1) {
     throw ErrorAt("Monte Carlo: num_iterations must be >= 1, got ",
@@ -213,6 +250,49 @@ ImageScaleResult EstimateImageScale(const LaserImage& image, int image_index,
   if (sample_features && !options.exact_relocalization) {
     linearized.emplace(image.camera, image.matches, image.cam_from_world);
   }
+
+  // Per draw of the model: its camera, and the pose refined to convergence
+  // on the drawn points (nonlinear in the model, which moves a pose by far
+  // more than the features do).
+  const ImageModelDraws& model = image.model;
+  const int num_draws = options.sample_model ? model.NumDraws() : 0;
+  if (num_draws > 0 &&
+      model.point_deltas.rows() !=
+          3 * static_cast<Eigen::Index>(image.matches.size())) {
+    throw ErrorAt("image ", image.name, ": model draws for ",
+                  model.point_deltas.rows() / 3, " matches, the image has ",
+                  image.matches.size());
+  }
+  result.num_model_draws = num_draws;
+  if (num_draws > 0) result.model_note = model.note;
+  const auto drawn_matches = [&](int m,
+                                 std::vector<Correspondence2D3D>* matches) {
+    for (size_t j = 0; j < matches->size(); ++j) {
+      (*matches)[j].point_in_world =
+          image.matches[j].point_in_world +
+          model.point_deltas.block<3, 1>(3 * static_cast<Eigen::Index>(j), m)
+              .cast<double>();
+    }
+  };
+  std::vector<Camera> draw_cameras(num_draws, image.camera);
+  std::vector<Rigid3d> draw_poses(num_draws, image.cam_from_world);
+  std::vector<char> draw_localized(num_draws, 1);
+  tbb::task_arena arena(options.num_threads > 0 ? options.num_threads
+                                                : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(0, num_draws, [&](int m) {
+      for (size_t p = 0; p < model.param_indices.size(); ++p) {
+        draw_cameras[m].params[model.param_indices[p]] +=
+            model.camera_deltas(static_cast<Eigen::Index>(p), m);
+      }
+      std::vector<Correspondence2D3D> matches = image.matches;
+      drawn_matches(m, &matches);
+      draw_localized[m] = RefinePose(
+          draw_cameras[m], matches, {},
+          std::max(options.max_refine_iterations, 50), &draw_poses[m]);
+    });
+  });
+
   const auto run = [&](const tbb::blocked_range<int>& range) {
     std::vector<Correspondence2D3D> perturbed = image.matches;
     Eigen::VectorXd offsets(2 * image.matches.size());
@@ -222,24 +302,36 @@ ImageScaleResult EstimateImageScale(const LaserImage& image, int image_index,
       SplitMix64Stream rng(SplitMix64(image_key + static_cast<uint64_t>(n)));
       SplitMix64Stream calibration_rng(
           SplitMix64(calibration_key + static_cast<uint64_t>(n)));
-      Rigid3d cam_from_world = image.cam_from_world;
-      bool localized = true;
-      if (sample_features) {
+      const int m = num_draws > 0 ? n % num_draws : -1;
+      const Camera& camera = m >= 0 ? draw_cameras[m] : image.camera;
+      Rigid3d cam_from_world = m >= 0 ? draw_poses[m] : image.cam_from_world;
+      bool localized = m < 0 || draw_localized[m];
+      if (sample_features && localized) {
         for (size_t j = 0; j < perturbed.size(); ++j) {
           offsets.segment<2>(2 * j) =
               image.feature_sigma_px * rng.GaussianPair();
         }
         if (linearized) {
-          cam_from_world = linearized->Perturbed(offsets);
+          cam_from_world =
+              m >= 0 ? linearized->PerturbedFrom(cam_from_world, offsets)
+                     : linearized->Perturbed(offsets);
         } else {
+          if (m >= 0) drawn_matches(m, &perturbed);
           for (size_t j = 0; j < perturbed.size(); ++j) {
             perturbed[j].pixel =
                 image.matches[j].pixel + offsets.segment<2>(2 * j);
           }
           localized =
-              RefinePose(image.camera, perturbed, {},
-                         options.max_refine_iterations, &cam_from_world);
+              RefinePose(camera, perturbed, {}, options.max_refine_iterations,
+                         &cam_from_world);
         }
+      }
+      if (m >= 0) {
+        // The mesh is the nominal model's: a surface moved by the draw is
+        // met by the camera moved the opposite way.
+        cam_from_world.translation +=
+            cam_from_world.rotation *
+            model.surface_shifts.col(m).cast<double>();
       }
       for (size_t l = 0; l < lasers.size(); ++l) {
         spots[l] = nominal_spots[l];
@@ -263,9 +355,8 @@ ImageScaleResult EstimateImageScale(const LaserImage& image, int image_index,
         }
         continue;
       }
-      const std::vector<ItemScale> scales =
-          EvaluateItems(method, items, sampled_lasers, caster, image.camera,
-                        cam_from_world, spots);
+      const std::vector<ItemScale> scales = EvaluateItems(
+          method, items, sampled_lasers, caster, camera, cam_from_world, spots);
       for (size_t k = 0; k < num_items; ++k) {
         if (scales[k].scale) {
           item_samples[offset + k] = *scales[k].scale;
@@ -275,8 +366,6 @@ ImageScaleResult EstimateImageScale(const LaserImage& image, int image_index,
       }
     }
   };
-  tbb::task_arena arena(options.num_threads > 0 ? options.num_threads
-                                                : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, num_iterations, 16), run);
   });
@@ -318,7 +407,15 @@ ImageScaleResult EstimateImageScale(const LaserImage& image, int image_index,
     }
   }
   result.monte_carlo = Summarize(result.samples);
-  result.rejection = Acceptance(image, result.items, options);
+  if (num_draws > 0) {
+    MonteCarloOptions without_model = options;
+    without_model.sample_model = false;
+    result.rejection = EstimateImageScale(image, image_index, setup, caster,
+                                          method, without_model)
+                           .rejection;
+  } else {
+    result.rejection = Acceptance(image, result.items, options);
+  }
   result.accepted = result.rejection.empty();
   return result;
 }

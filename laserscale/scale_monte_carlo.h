@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,6 +45,29 @@ struct Spot {
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
 };
 
+// What the model's own error does to one laser image, per joint draw of
+// the bundle adjustment's posterior (laserscale/model_draws.h): one column
+// per draw, iteration n of the Monte Carlo using draw n mod NumDraws() in
+// every image, so that what images share (one camera, overlapping points)
+// stays correlated when they are combined.
+struct ImageModelDraws {
+  // Deltas of the camera's refined parameters (rows: param_indices).
+  std::vector<int> param_indices;
+  Eigen::MatrixXd camera_deltas;
+  // Deltas of the matches' points, 3 rows per match (zero for a point the
+  // draws do not hold: num_points_without_draws).
+  Eigen::MatrixXf point_deltas;
+  int num_points_without_draws = 0;
+  // How the surface under the laser hits moves, 3 rows: the mean delta of
+  // the model points nearest the hits, the farthest of them this far away.
+  Eigen::MatrixXf surface_shifts;
+  double surface_radius = 0.0;
+  // What of the model is not sampled (say, intrinsics held), for the user.
+  std::string note;
+
+  int NumDraws() const { return static_cast<int>(surface_shifts.cols()); }
+};
+
 // Everything one laser image contributes.
 struct LaserImage {
   std::string name;
@@ -54,7 +78,17 @@ struct LaserImage {
   double feature_sigma_px = 0.0;  // the localization's RMS error
   // One per laser of the set-up; std::nullopt: not (confidently) detected.
   std::vector<std::optional<Spot>> spots;
+  // The model's draws; none (NumDraws() == 0): the model is taken as exact.
+  ImageModelDraws model;
 };
+
+// What a Monte Carlo can re-sample; each alone gives its share of the
+// variance (EstimateLaserImages).
+enum class ScaleSource { kFeatures, kSpots, kCalibration, kModel };
+std::string ScaleSourceName(ScaleSource source);
+constexpr ScaleSource kScaleSources[] = {
+    ScaleSource::kFeatures, ScaleSource::kSpots, ScaleSource::kCalibration,
+    ScaleSource::kModel};
 
 struct MonteCarloOptions {
   int num_iterations = 5000;  // the thesis's N_MC
@@ -63,6 +97,10 @@ struct MonteCarloOptions {
   bool sample_features = true;
   bool sample_spots = true;
   bool sample_calibration = true;  // directions and origins
+  // The model's intrinsics, points and surface, when the image has draws
+  // (LaserImage::model): each draw's pose is refined to convergence in the
+  // drawn model, the features' noise added to it by the linearization.
+  bool sample_model = true;
   // false: the linearized re-localization (LinearizedPose, ~20x faster);
   // true: a refinement to convergence (RefinePose) every iteration. Both
   // give the same σ to < 1 % (scale_monte_carlo_test).
@@ -76,13 +114,19 @@ struct MonteCarloOptions {
   // scale further from the items' median than max_item_sigmas of its own
   // Monte Carlo σ (the scale is locally constant; a larger disagreement
   // than the spots and the calibration's stated uncertainty explain
-  // betrays a calibration error [L2672]).
+  // betrays a calibration error [L2672]). That σ leaves the model's draws
+  // out: they move every item of an image alike, so they cannot explain
+  // items that disagree.
   int min_lasers = 2;
   double max_item_sigmas = 3.0;
   // Threads (<= 0: all cores). The result does not depend on it.
   int num_threads = 0;
 
   void Check() const;  // throws uw::Error naming the field
+
+  bool Samples(ScaleSource source) const;
+  // These options with only `source` sampled.
+  MonteCarloOptions Only(ScaleSource source) const;
 };
 
 // Mean, σ (n - 1) and percentiles (linear interpolation) of valid samples.
@@ -120,6 +164,11 @@ struct ImageScaleResult {
   std::vector<double> samples;        // valid ones, in iteration order
   std::vector<double> per_iteration;  // one per iteration; NaN: none
   std::vector<ConvergencePoint> convergence;
+  // Each sampled source alone (EstimateLaserImages): its per-iteration
+  // scales, for the share of the combined variance it explains.
+  std::vector<std::pair<ScaleSource, std::vector<double>>> per_source;
+  int num_model_draws = 0;  // used; 0: the model taken as exact
+  std::string model_note;   // ImageModelDraws::note
   bool accepted = false;
   std::string rejection;  // why not accepted
 };

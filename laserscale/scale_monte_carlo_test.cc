@@ -146,6 +146,104 @@ TEST(EstimateImageScale, LinearizedRelocalizationMatchesTheFullOne) {
               0.01);
 }
 
+// Draws of the model in which every point and the surface move by one
+// vector d per draw: `num_draws` columns, d of norm about `step`.
+ImageModelDraws TranslationDraws(size_t num_matches, int num_draws,
+                                 double step) {
+  ImageModelDraws draws;
+  draws.point_deltas.resize(3 * static_cast<Eigen::Index>(num_matches),
+                            num_draws);
+  draws.surface_shifts.resize(3, num_draws);
+  for (int m = 0; m < num_draws; ++m) {
+    const Eigen::Vector3d d =
+        step * Eigen::Vector3d(std::sin(1.0 + m), std::cos(2.0 * m), 0.5);
+    draws.surface_shifts.col(m) = d.cast<float>();
+    for (size_t j = 0; j < num_matches; ++j) {
+      draws.point_deltas.block<3, 1>(3 * static_cast<Eigen::Index>(j), m) =
+          d.cast<float>();
+    }
+  }
+  return draws;
+}
+
+// A model moved as a whole measures the same scale: the re-localized camera
+// follows its points and the surface shift brings the mesh along. A sign
+// error in the shift would change the scale by ~2 |d| / range.
+TEST(EstimateImageScale, AModelDrawnTranslatedMeasuresTheSameScale) {
+  Case c = MakeCase(ShotNoise(), 1.0, 6);
+  const RayCaster caster(c.model_mesh);
+  c.shot.image.model = TranslationDraws(c.shot.image.matches.size(), 20, 0.05);
+  MonteCarloOptions options;
+  options.num_iterations = 40;
+  const ImageScaleResult result = EstimateImageScale(
+      c.shot.image, 0, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  ASSERT_TRUE(result.nominal);
+  EXPECT_EQ(result.num_model_draws, 20);
+  ASSERT_EQ(result.samples.size(), 40u);
+  for (const double scale : result.samples) {
+    EXPECT_NEAR(scale, *result.nominal, 1e-6);
+  }
+  // Only the surface moving is a change of the model's shape: the scale
+  // moves by about the shift over the range (3 m).
+  c.shot.image.model.point_deltas.setZero();
+  const ImageScaleResult surface_only = EstimateImageScale(
+      c.shot.image, 0, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  EXPECT_GT(surface_only.monte_carlo.std_dev, 0.002);
+  EXPECT_LT(surface_only.monte_carlo.std_dev, 0.05);
+}
+
+// The focal length drawn with sigma sigma_f: the scale's spread grows
+// linearly with it, sample for sample the same as an image whose camera
+// and pose are those of the draw, and the draws' pose refinement keeps
+// the result independent of the thread count.
+TEST(EstimateImageScale, DrawnIntrinsicsMoveTheScaleAsTheirOwnImageWould) {
+  const Case c = MakeCase(Noisy(), 1.0, 7);
+  const RayCaster caster(c.model_mesh);
+  LaserImage image = c.shot.image;
+  const int num_draws = 30;
+  image.model.param_indices = {0};
+  image.model.camera_deltas.resize(1, num_draws);
+  for (int m = 0; m < num_draws; ++m) {
+    image.model.camera_deltas(0, m) = 4.0 * std::sin(0.7 * m + 0.3);
+  }
+  image.model.point_deltas.setZero(3 * image.matches.size(), num_draws);
+  image.model.surface_shifts.setZero(3, num_draws);
+  MonteCarloOptions options = MonteCarloOptions().Only(ScaleSource::kModel);
+  options.num_iterations = num_draws;
+  options.num_threads = 1;
+  const ImageScaleResult one = EstimateImageScale(
+      image, 0, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  options.num_threads = 2;
+  const ImageScaleResult two = EstimateImageScale(
+      image, 0, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  EXPECT_EQ(one.samples, two.samples);
+  ASSERT_EQ(one.per_iteration.size(), static_cast<size_t>(num_draws));
+  for (const int m : {0, 7, 19}) {
+    LaserImage drawn = c.shot.image;
+    drawn.camera.params[0] += image.model.camera_deltas(0, m);
+    ASSERT_TRUE(
+        RefinePose(drawn.camera, drawn.matches, {}, 50, &drawn.cam_from_world));
+    MonteCarloOptions nominal_only = options;
+    nominal_only.num_iterations = 1;
+    const ImageScaleResult alone = EstimateImageScale(
+        drawn, 0, c.shot.calibration, caster, ScaleMethod::kFum,
+        nominal_only.Only(ScaleSource::kModel));
+    ASSERT_TRUE(alone.nominal);
+    EXPECT_NEAR(one.per_iteration[m], *alone.nominal, 1e-9) << m;
+  }
+  image.model.camera_deltas *= 2.0;
+  const ImageScaleResult doubled = EstimateImageScale(
+      image, 0, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  EXPECT_GT(one.monte_carlo.std_dev, 1e-5);
+  EXPECT_NEAR(doubled.monte_carlo.std_dev / one.monte_carlo.std_dev, 2.0, 0.05);
+  // Not sampling the model ignores the draws.
+  options.sample_model = false;
+  const ImageScaleResult exact = EstimateImageScale(
+      image, 0, c.shot.calibration, caster, ScaleMethod::kFum, options);
+  EXPECT_EQ(exact.num_model_draws, 0);
+  EXPECT_LT(exact.monte_carlo.std_dev, 1e-12);
+}
+
 TEST(EstimateImageScale, SummariesAndConvergenceTrace) {
   const Case c = MakeCase(Noisy(), 1.0, 4);
   const RayCaster caster(c.model_mesh);

@@ -20,6 +20,26 @@ namespace {
 constexpr char kFormat[] = "uwmetric-laser-scale";
 constexpr int kVersion = 1;
 
+// Iteration by iteration, the weighted mean of the runs' valid scales (NaN
+// where none is valid); runs[k] has weights[k].
+std::vector<double> WeightedPerIteration(
+    const std::vector<const std::vector<double>*>& runs,
+    const std::vector<double>& weights) {
+  std::vector<double> combined(runs.front()->size());
+  for (size_t n = 0; n < combined.size(); ++n) {
+    double sum = 0.0;
+    double used = 0.0;
+    for (size_t k = 0; k < runs.size(); ++k) {
+      const double s = (*runs[k])[n];
+      if (std::isnan(s)) continue;
+      sum += weights[k] * s;
+      used += weights[k];
+    }
+    combined[n] = used > 0.0 ? sum / used : std::nan("");
+  }
+  return combined;
+}
+
 CombinedScale Combine(const std::vector<ImageEstimate>& images,
                       const std::vector<size_t>& members) {
   CombinedScale combined;
@@ -44,18 +64,10 @@ CombinedScale Combine(const std::vector<ImageEstimate>& images,
   }
   nominal /= weight_sum;
   combined.nominal = nominal;
-  const size_t num_iterations = images[members[0]].result->per_iteration.size();
-  for (size_t n = 0; n < num_iterations; ++n) {
-    double sum = 0.0;
-    double used = 0.0;
-    for (size_t k = 0; k < members.size(); ++k) {
-      const double s = images[members[k]].result->per_iteration[n];
-      if (std::isnan(s)) continue;
-      sum += weights[k] * s;
-      used += weights[k];
-    }
-    combined.per_iteration.push_back(used > 0.0 ? sum / used : std::nan(""));
-  }
+  std::vector<const std::vector<double>*> runs;
+  for (const size_t i : members)
+    runs.push_back(&images[i].result->per_iteration);
+  combined.per_iteration = WeightedPerIteration(runs, weights);
   combined.monte_carlo = Summarize(combined.per_iteration);
   if (members.size() >= 2 && all_spread) {
     double chi2 = 0.0;
@@ -64,6 +76,19 @@ CombinedScale Combine(const std::vector<ImageEstimate>& images,
       chi2 += weights[k] * d * d;
     }
     combined.birge_ratio = std::sqrt(chi2 / (members.size() - 1.0));
+  }
+  // Each source sampled alone, combined with the same weights.
+  for (const auto& first_run : images[members[0]].result->per_source) {
+    const ScaleSource source = first_run.first;
+    std::vector<const std::vector<double>*> source_runs;
+    for (const size_t i : members) {
+      for (const auto& run : images[i].result->per_source) {
+        if (run.first == source) source_runs.push_back(&run.second);
+      }
+    }
+    if (source_runs.size() != members.size()) continue;  // not in every one
+    combined.source_sigmas.emplace_back(
+        source, Summarize(WeightedPerIteration(source_runs, weights)).std_dev);
   }
   const double widen = std::max(1.0, combined.birge_ratio);
   const SampleSummary& mc = combined.monte_carlo;
@@ -88,12 +113,24 @@ nlohmann::json CombinedJson(const CombinedScale& c,
                             const std::vector<ImageEstimate>& images) {
   nlohmann::json names = nlohmann::json::array();
   for (const size_t i : c.images) names.push_back(images[i].name);
-  return {{"scale", c.nominal ? nlohmann::json(*c.nominal) : nlohmann::json()},
-          {"sigma", c.sigma},
-          {"ci95", {c.ci95_low, c.ci95_high}},
-          {"birge_ratio", c.birge_ratio},
-          {"monte_carlo", SummaryJson(c.monte_carlo)},
-          {"images", names}};
+  nlohmann::json json = {
+      {"scale", c.nominal ? nlohmann::json(*c.nominal) : nlohmann::json()},
+      {"sigma", c.sigma},
+      {"ci95", {c.ci95_low, c.ci95_high}},
+      {"birge_ratio", c.birge_ratio},
+      {"monte_carlo", SummaryJson(c.monte_carlo)},
+      {"images", names}};
+  if (!c.source_sigmas.empty()) {
+    nlohmann::json shares = nlohmann::json::object();
+    const double variance = c.monte_carlo.std_dev * c.monte_carlo.std_dev;
+    for (const auto& [source, sigma] : c.source_sigmas) {
+      shares[ScaleSourceName(source)] = {
+          {"sigma", sigma},
+          {"share", variance > 0.0 ? sigma * sigma / variance : 0.0}};
+    }
+    json["variance_by_source"] = shares;
+  }
+  return json;
 }
 
 std::string Percent(double scale) {
@@ -112,6 +149,19 @@ std::string SummaryCsv(const SampleSummary& s) {
 }
 
 }  // namespace
+
+std::optional<NavigationScaleCheck> CheckAgainstNavigation(
+    const CombinedScale& scale, double log_scale_sigma) {
+  const double sigma =
+      std::sqrt(scale.sigma * scale.sigma + log_scale_sigma * log_scale_sigma);
+  // Without any uncertainty on either side there is no test to make.
+  if (!scale.nominal || !(sigma > 0.0)) return std::nullopt;
+  NavigationScaleCheck check;
+  check.log_scale_sigma = log_scale_sigma;
+  check.z = (*scale.nominal - 1.0) / sigma;
+  check.consistent = std::abs(check.z) <= 3.0;
+  return check;
+}
 
 void CombineOptions::Check() const {
   if (!(segment_radius > 0.0) || !std::isfinite(segment_radius)) {
@@ -180,6 +230,8 @@ std::string ScaleJsonText(const ModelScaleReport& report) {
     const ImageScaleResult& r = *image.result;
     entry["accepted"] = r.accepted;
     entry["rejection"] = r.rejection;
+    entry["model_draws"] = r.num_model_draws;
+    if (!r.model_note.empty()) entry["model_note"] = r.model_note;
     entry["nominal"] =
         r.nominal ? nlohmann::json(*r.nominal) : nlohmann::json();
     entry["monte_carlo"] = SummaryJson(r.monte_carlo);
@@ -215,6 +267,25 @@ std::string ScaleJsonText(const ModelScaleReport& report) {
   json["seed"] = report.monte_carlo.seed;
   json["num_images"] = report.images.size();
   json["num_accepted"] = report.model.images.size();
+  json["model_draws"] = {
+      {"count", report.num_model_draws},
+      {"gauge", report.model_gauge},
+      {"meaning",
+       report.num_model_draws > 0
+           ? "the model's intrinsics, points and surface re-sampled from "
+             "the bundle adjustment's covariance (deformation only)"
+           : "none: the model was taken as exact, so its own error is not "
+             "in the interval (laserscale estimate --covariance)"}};
+  if (report.navigation) {
+    const NavigationScaleCheck& check = *report.navigation;
+    json["navigation"] = {{"log_scale_sigma", check.log_scale_sigma},
+                          {"z", check.z},
+                          {"consistent", check.consistent},
+                          {"meaning",
+                           "z = (s - 1) / sqrt(sigma^2 + log_scale_sigma^2):"
+                           " the laser scale against the navigation's own "
+                           "scale of the fused model; |z| > 3: one is wrong"}};
+  }
   json["segments"] = segments;
   json["per_image"] = images;
   return json.dump(2) + "\n";
@@ -353,6 +424,41 @@ void WriteScaleReport(const ModelScaleReport& report,
            << "); the interval is widened by it. A scale that varies along "
               "the model (see the segments) or an unmodelled error.</p>\n";
     }
+    if (report.num_model_draws > 0) {
+      html << "<p>The model's own error is in the interval: "
+           << report.num_model_draws << " draws of its covariance (gauge "
+           << HtmlEscape(report.model_gauge)
+           << ") re-sample its intrinsics, points and surface.</p>\n";
+    } else {
+      html << "<p class=\"bad\">The model was taken as exact (no "
+              "<code>--covariance</code>): its own error, often the largest "
+              "source, is not in the interval.</p>\n";
+    }
+    if (!model.source_sigmas.empty()) {
+      const double variance =
+          model.monte_carlo.std_dev * model.monte_carlo.std_dev;
+      html << "<p>Share of the variance, each source sampled alone:";
+      for (const auto& [source, sigma] : model.source_sigmas) {
+        html << " " << ScaleSourceName(source) << " "
+             << fmt::format("{:.0f}", variance > 0.0
+                                          ? 100.0 * sigma * sigma / variance
+                                          : 0.0)
+             << " % (&sigma; " << Fixed(sigma) << ")";
+      }
+      html << ".</p>\n";
+    }
+    if (report.navigation) {
+      const NavigationScaleCheck& check = *report.navigation;
+      html << "<p" << (check.consistent ? "" : " class=\"bad\"")
+           << ">Against the navigation's own scale of this fused model "
+              "(log-scale &sigma; "
+           << Fixed(check.log_scale_sigma, 4)
+           << "): z = " << fmt::format("{:+.2f}", check.z)
+           << (check.consistent ? ", consistent."
+                                : ": beyond 3 &sigma;, the laser scale and the "
+                                  "navigation disagree; one of them is wrong.")
+           << "</p>\n";
+    }
   } else {
     html << "<p class=\"bad\">No laser image was accepted: no scale. See "
             "the reasons below.</p>\n";
@@ -407,7 +513,7 @@ void WriteScaleReport(const ModelScaleReport& report,
                        false);
 }
 
-double ReadScaleFromJson(const std::filesystem::path& path) {
+ScaleJson ReadScaleFromJson(const std::filesystem::path& path) {
   const nlohmann::json json =
       ParseJsonText(ReadFileToString(path), path.string());
   if (!json.is_object() || json.value("format", "") != kFormat) {
@@ -419,11 +525,28 @@ double ReadScaleFromJson(const std::filesystem::path& path) {
     throw ErrorAt(path.string(),
                   ": no scale (no laser image was accepted; see index.html)");
   }
-  const double s = scale->get<double>();
-  if (!std::isfinite(s) || !(s > 0.0)) {
-    throw ErrorAt(path.string(), ": the scale ", s, " is not positive");
+  ScaleJson result;
+  result.scale = scale->get<double>();
+  if (!std::isfinite(result.scale) || !(result.scale > 0.0)) {
+    throw ErrorAt(path.string(), ": the scale ", result.scale,
+                  " is not positive");
   }
-  return s;
+  try {
+    if (json.contains("model_draws")) {
+      result.num_model_draws = json["model_draws"].at("count").get<int>();
+    }
+    if (json.contains("navigation")) {
+      const nlohmann::json& navigation = json["navigation"];
+      NavigationScaleCheck check;
+      check.log_scale_sigma = navigation.at("log_scale_sigma").get<double>();
+      check.z = navigation.at("z").get<double>();
+      check.consistent = navigation.at("consistent").get<bool>();
+      result.navigation = check;
+    }
+  } catch (const nlohmann::json::exception& error) {
+    throw ErrorAt(path.string(), ": ", error.what());
+  }
+  return result;
 }
 
 }  // namespace uw

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -40,6 +41,21 @@ struct CombinedScale {
   double birge_ratio = 1.0;
   double sigma = 0.0;  // Monte Carlo σ times max(1, R)
   double ci95_low = 0.0, ci95_high = 0.0;
+  // Per source sampled alone in every member (ImageScaleResult::per_source),
+  // the σ of the members combined with the same weights: its share of the
+  // variance is (σ_source / monte_carlo.std_dev)^2. The shares sum to 1
+  // where the sources act linearly and independently.
+  std::vector<std::pair<ScaleSource, double>> source_sigmas;
+};
+
+// How the laser scale agrees with the navigation's own scale of a fused
+// model (the covariance's gauge "priors"): the model is meant to be in
+// metres (s = 1) within the navigation's scale uncertainty, the laser
+// measures s within its own; |z| > 3 means one of them is wrong.
+struct NavigationScaleCheck {
+  double log_scale_sigma = 0.0;  // the navigation's (covariance draws)
+  double z = 0.0;                // (s - 1) / sqrt(σ_s^2 + σ_nav^2)
+  bool consistent = true;        // |z| <= 3
 };
 
 struct Segment {
@@ -58,7 +74,18 @@ struct ModelScaleReport {
   std::vector<ImageEstimate> images;
   CombinedScale model;
   std::vector<Segment> segments;
+  // The covariance's draws the Monte Carlo used (0: the model taken as
+  // exact), their gauge, and the check against the navigation's scale
+  // (gauge "priors" only).
+  int num_model_draws = 0;
+  std::string model_gauge;
+  std::optional<NavigationScaleCheck> navigation;
 };
+
+// The check of a combined scale against the navigation's scale σ; none
+// without a scale, or when neither side has an uncertainty.
+std::optional<NavigationScaleCheck> CheckAgainstNavigation(
+    const CombinedScale& scale, double log_scale_sigma);
 
 // Combines the accepted images. An empty combination (no accepted image)
 // leaves model.nominal empty; the report then says why image by image.
@@ -73,8 +100,15 @@ std::string ScaleJsonText(const ModelScaleReport& report);
 void WriteScaleReport(const ModelScaleReport& report,
                       const std::filesystem::path& dir);
 
+// What `apply` needs of a scale.json.
+struct ScaleJson {
+  double scale = 1.0;
+  int num_model_draws = 0;  // 0: the model's own error was not sampled
+  std::optional<NavigationScaleCheck> navigation;
+};
+
 // The scale s of a scale.json, checked: a combination exists and s is
 // finite and positive. Throws uw::Error naming the file.
-double ReadScaleFromJson(const std::filesystem::path& path);
+ScaleJson ReadScaleFromJson(const std::filesystem::path& path);
 
 }  // namespace uw

@@ -112,7 +112,7 @@ TEST(WriteScaleReport, WritesEveryFileAndApplyReadsTheScale) {
         "scales.png", "histogram.png", "convergence.png"}) {
     EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
   }
-  EXPECT_NEAR(ReadScaleFromJson(dir / "scale.json"), 0.99, 1e-12);
+  EXPECT_NEAR(ReadScaleFromJson(dir / "scale.json").scale, 0.99, 1e-12);
 
   // No accepted image: no scale, and apply refuses.
   images[0].result->accepted = false;

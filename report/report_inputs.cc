@@ -76,6 +76,7 @@ void SurveyReportInputs::Check() const {
   RequireExists(mesh_path, "--mesh", false);
   RequireExists(timings_path, "--timings", false);
   RequireExists(truth_dir, "--truth_dir", true);
+  RequireExists(covariance_dir, "--covariance", true);
 }
 
 BaReportSummary ReadBaReport(const fs::path& path) {
@@ -152,6 +153,69 @@ LaserReportSummary ReadLaserReport(const fs::path& dir) {
       }
     }
     std::sort(summary.overlays.begin(), summary.overlays.end());
+  }
+  if (json.contains("model_draws")) {
+    const Json& draws = json["model_draws"];
+    summary.model_draws = Get<int>(draws, "count", scale_path);
+    summary.model_gauge = draws.value("gauge", "");
+  }
+  const Json shares = json.value("variance_by_source", Json::object());
+  for (const auto& [source, share] : shares.items()) {
+    summary.variance_shares.emplace_back(
+        source, Get<double>(share, "share", scale_path));
+  }
+  if (json.contains("navigation")) {
+    summary.navigation_z = Get<double>(json["navigation"], "z", scale_path);
+    summary.navigation_consistent =
+        Get<bool>(json["navigation"], "consistent", scale_path);
+  }
+  return summary;
+}
+
+CovarianceSummary ReadCovarianceSummary(const fs::path& dir) {
+  const fs::path path = dir / "covariance.json";
+  if (!fs::is_regular_file(path)) {
+    throw ErrorAt(path.string(),
+                  ": missing (expected an output folder of uwcolmap "
+                  "covariance_estimator)");
+  }
+  const Json json = ReadJsonFile(path, "uwmetric-covariance");
+  const auto quantiles = [&](const Json& parent, const std::string& key) {
+    const Json& value = Get<Json>(parent, key, path);
+    return CovarianceSummary::Quantiles{Get<double>(value, "median", path),
+                                        Get<double>(value, "p95", path),
+                                        Get<double>(value, "max", path)};
+  };
+  CovarianceSummary summary;
+  summary.dir = dir;
+  summary.gauge = Get<std::string>(json, "gauge", path);
+  summary.gauge_description = json.value("gauge_description", "");
+  summary.pixel_sigma_px = Get<double>(json, "pixel_sigma_px", path);
+  summary.pixel_sigma_source = json.value("pixel_sigma_source", "");
+  summary.num_images = Get<int>(json, "num_images", path);
+  summary.num_points = Get<int>(json, "num_points", path);
+  const Json& images = Get<Json>(json, "images", path);
+  summary.centre_sigma_m = quantiles(images, "sigma_position_m");
+  summary.rotation_sigma_deg = quantiles(images, "sigma_rotation_deg");
+  if (json.contains("points") &&
+      json["points"].contains("sigma_largest_axis_m")) {
+    summary.point_sigma_m = quantiles(json["points"], "sigma_largest_axis_m");
+    summary.num_weak_points = json["points"].value("num_weak", 0);
+  }
+  summary.warnings = json.value("warnings", std::vector<std::string>{});
+  if (json.contains("samples")) {
+    const Json& samples = json["samples"];
+    summary.num_samples = Get<int>(samples, "count", path);
+    summary.log_scale_sigma = Get<double>(samples, "log_scale_sigma", path);
+    summary.log_scale_meaning = samples.value("log_scale_meaning", "");
+  }
+  summary.cameras = CsvTable::Read(
+      dir / "cameras.csv",
+      {"image_id", "name", "held", "num_points", "sigma_x_m", "sigma_y_m",
+       "sigma_z_m", "sigma_position_m", "sigma_rotation_deg"},
+      {"name", "held", "num_points", "sigma_position_m", "sigma_rotation_deg"});
+  if (fs::is_regular_file(dir / "uncertainty_map.png")) {
+    summary.map = dir / "uncertainty_map.png";
   }
   return summary;
 }

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,6 +30,7 @@ struct SurveyReportInputs {
   std::filesystem::path mesh_path;              // dense mesh, model frame
   std::filesystem::path timings_path;           // timings.csv (stage,seconds)
   std::filesystem::path truth_dir;              // uwsim output folder
+  std::filesystem::path covariance_dir;         // covariance_estimator's output
 
   // Throws uw::Error naming the flag and the path of the first input that
   // does not exist (a folder for the model, laser report and truth, else a
@@ -80,8 +82,43 @@ struct LaserReportSummary {
   // convergence.png; the overlays (overlays/*.png|jpg), sorted.
   std::vector<std::filesystem::path> plots;
   std::vector<std::filesystem::path> overlays;
+  // The model's covariance draws the Monte Carlo used (0: the model taken
+  // as exact), each source's share of the variance, and the z-score
+  // against the navigation's scale (a fused model only).
+  int model_draws = 0;
+  std::string model_gauge;
+  std::vector<std::pair<std::string, double>> variance_shares;
+  std::optional<double> navigation_z;
+  bool navigation_consistent = true;
 };
 LaserReportSummary ReadLaserReport(const std::filesystem::path& dir);
+
+// covariance_estimator's (or bundle_adjuster --BA.covariance 1's) folder:
+// covariance.json (format "uwmetric-covariance"), cameras.csv and
+// uncertainty_map.png.
+struct CovarianceSummary {
+  struct Quantiles {
+    double median = 0.0, p95 = 0.0, max = 0.0;
+  };
+  std::filesystem::path dir;
+  std::string gauge;
+  std::string gauge_description;
+  double pixel_sigma_px = 0.0;
+  std::string pixel_sigma_source;
+  int num_images = 0;
+  int num_points = 0;
+  Quantiles centre_sigma_m;
+  Quantiles rotation_sigma_deg;
+  std::optional<Quantiles> point_sigma_m;  // without point marginals: none
+  int num_weak_points = 0;
+  std::vector<std::string> warnings;
+  int num_samples = 0;
+  double log_scale_sigma = 0.0;
+  std::string log_scale_meaning;
+  CsvTable cameras;                          // cameras.csv
+  std::optional<std::filesystem::path> map;  // uncertainty_map.png
+};
+CovarianceSummary ReadCovarianceSummary(const std::filesystem::path& dir);
 
 // model_comparer's compare.json (format "uwmetric-model-comparison") with
 // a dense_surface block.

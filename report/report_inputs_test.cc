@@ -63,6 +63,28 @@ TEST_F(ReportInputsTest, ReadsWhatTheReportShows) {
   ASSERT_EQ(laser.overlays.size(), 2u);
   EXPECT_EQ(laser.overlays[0].filename(), "L0.png");
 
+  EXPECT_EQ(laser.model_draws, 200);
+  EXPECT_EQ(laser.model_gauge, "priors");
+  ASSERT_EQ(laser.variance_shares.size(), 2u);
+  EXPECT_EQ(laser.variance_shares[1].first, "model");
+  EXPECT_EQ(laser.variance_shares[1].second, 0.36);
+  EXPECT_EQ(laser.navigation_z, 4.25);
+  EXPECT_FALSE(laser.navigation_consistent);
+
+  const CovarianceSummary covariance =
+      ReadCovarianceSummary(inputs_.covariance_dir);
+  EXPECT_EQ(covariance.gauge, "priors");
+  EXPECT_EQ(covariance.pixel_sigma_px, 0.35);
+  EXPECT_EQ(covariance.centre_sigma_m.max, 0.031);
+  ASSERT_TRUE(covariance.point_sigma_m.has_value());
+  EXPECT_EQ(covariance.point_sigma_m->median, 0.009);
+  EXPECT_EQ(covariance.num_weak_points, 3);
+  EXPECT_EQ(covariance.num_samples, 200);
+  EXPECT_EQ(covariance.log_scale_sigma, 0.0705);
+  EXPECT_EQ(covariance.warnings.size(), 1u);
+  EXPECT_EQ(covariance.cameras.NumRows(), 4u);
+  EXPECT_TRUE(covariance.map.has_value());
+
   const DenseComparisonSummary dense =
       ReadDenseComparison(inputs_.dense_comparison_path);
   EXPECT_EQ(dense.median_distance, 0.0025);
@@ -109,6 +131,17 @@ TEST_F(ReportInputsTest, ErrorsNameTheFlagFileAndKey) {
   EXPECT_NE(ErrorOf([&] {
               ReadLaserReport(inputs_.laser_report_dir);
             }).find("scale.json: missing"),
+            std::string::npos);
+  WriteTestText(inputs_.covariance_dir / "covariance.json",
+                R"({"format": "uwmetric-covariance", "version": 1,
+ "gauge": "held", "pixel_sigma_px": 0.3, "num_images": 4, "num_points": 1})");
+  EXPECT_NE(ErrorOf([&] {
+              ReadCovarianceSummary(inputs_.covariance_dir);
+            }).find("covariance.json: missing key \"images\""),
+            std::string::npos);
+  missing = inputs_;
+  missing.covariance_dir = dir_ / "no_covariance";
+  EXPECT_NE(ErrorOf([&] { missing.Check(); }).find("--covariance "),
             std::string::npos);
   WriteTestText(inputs_.timings_path, "stage,seconds\nx,fast\n");
   EXPECT_NE(ErrorOf([&] {

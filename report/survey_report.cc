@@ -255,7 +255,8 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
       {"dense_comparison", inputs.dense_comparison_path.string()},
       {"mesh", inputs.mesh_path.string()},
       {"timings", inputs.timings_path.string()},
-      {"truth_dir", inputs.truth_dir.string()}};
+      {"truth_dir", inputs.truth_dir.string()},
+      {"covariance", inputs.covariance_dir.string()}};
   const auto omit = [&](const std::string& text) {
     result.omitted.push_back(text);
     return Note(text);
@@ -287,6 +288,10 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
   if (!inputs.mesh_path.empty()) mesh = ReadMesh(inputs.mesh_path);
   std::optional<TruthFigures> truth;
   if (!inputs.truth_dir.empty()) truth = ReadTruth(inputs.truth_dir, model);
+  std::optional<CovarianceSummary> covariance;
+  if (!inputs.covariance_dir.empty()) {
+    covariance = ReadCovarianceSummary(inputs.covariance_dir);
+  }
 
   std::unordered_map<std::string, int> dive_of_image;
   for (const NavRecord& record : navigation) {
@@ -377,6 +382,44 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
             "uncertainties allow (Birge ratio above 1); the interval was "
             "widened by it. Look at the segments: the scale may vary along "
             "the model.</p>\n";
+      }
+      scale_json["model_draws"] = laser->model_draws;
+      if (laser->model_draws > 0) {
+        scale_html += "<p>The interval holds the model's own error: " +
+                      std::to_string(laser->model_draws) +
+                      " draws of its covariance (gauge " +
+                      HtmlEscape(laser->model_gauge) +
+                      ") re-sampled its intrinsics, points and surface.</p>\n";
+      } else {
+        scale_html +=
+            "<p class=\"bad\">The laser scale took the model as exact "
+            "(laserscale estimate without --covariance): the model's own "
+            "error is not in the interval.</p>\n";
+      }
+      if (!laser->variance_shares.empty()) {
+        std::string shares;
+        Json shares_json = Json::object();
+        for (const auto& [source, share] : laser->variance_shares) {
+          shares += (shares.empty() ? "" : ", ") + HtmlEscape(source) + " " +
+                    Fixed(100.0 * share, 0) + " %";
+          shares_json[source] = share;
+        }
+        scale_json["variance_shares"] = shares_json;
+        scale_html += "<p>Share of the variance, each source alone: " + shares +
+                      ".</p>\n";
+      }
+      if (laser->navigation_z) {
+        scale_json["navigation_z"] = *laser->navigation_z;
+        scale_html +=
+            std::string(laser->navigation_consistent ? "<p>"
+                                                     : "<p class=\"bad\">") +
+            "Against the navigation's own scale of this fused model: z = " +
+            Signed(*laser->navigation_z, 2) +
+            (laser->navigation_consistent
+                 ? " (consistent)."
+                 : ": beyond 3 &sigma;, the laser scale and the navigation "
+                   "disagree; one of them is wrong.") +
+            "</p>\n";
       }
     } else {
       scale_html +=
@@ -585,6 +628,110 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
     nav_html += omit(
         "No navigation fusion section: give bundle_adjuster's ba_report.json "
         "with --ba_report.");
+  }
+
+  // ----------------------------------------------------------- uncertainty
+  std::string uncertainty_html =
+      "<h2 id=\"uncertainty\">Uncertainty of the model</h2>\n";
+  if (covariance) {
+    const CovarianceSummary& c = *covariance;
+    Json uncertainty = {
+        {"gauge", c.gauge},
+        {"pixel_sigma_px", c.pixel_sigma_px},
+        {"num_images", c.num_images},
+        {"num_points", c.num_points},
+        {"centre_sigma_m_median", c.centre_sigma_m.median},
+        {"centre_sigma_m_max", c.centre_sigma_m.max},
+        {"rotation_sigma_deg_median", c.rotation_sigma_deg.median},
+        {"warnings", c.warnings}};
+    uncertainty_html +=
+        "<p>Covariance of the bundle adjustment (uwcolmap "
+        "covariance_estimator; docs/covariance.md), gauge <b>" +
+        HtmlEscape(c.gauge) + "</b>" +
+        (c.gauge_description.empty()
+             ? std::string()
+             : " (" + HtmlEscape(c.gauge_description) + ")") +
+        ": the sigmas are relative to what the gauge holds fixed" +
+        (c.gauge == "priors" ? ", here the navigation, so they are absolute"
+                             : "") +
+        ". Pixel noise " + Fixed(c.pixel_sigma_px, 3) + " px (" +
+        HtmlEscape(c.pixel_sigma_source) + ").</p>\n";
+    std::vector<std::vector<std::string>> rows = {
+        {"camera centre (m)", Fixed(c.centre_sigma_m.median, 4),
+         Fixed(c.centre_sigma_m.p95, 4), Fixed(c.centre_sigma_m.max, 4)},
+        {"camera rotation (deg)", Fixed(c.rotation_sigma_deg.median, 3),
+         Fixed(c.rotation_sigma_deg.p95, 3),
+         Fixed(c.rotation_sigma_deg.max, 3)}};
+    if (c.point_sigma_m) {
+      rows.push_back(
+          {"point, largest axis (m)", Fixed(c.point_sigma_m->median, 4),
+           Fixed(c.point_sigma_m->p95, 4), Fixed(c.point_sigma_m->max, 4)});
+      uncertainty["point_sigma_m_median"] = c.point_sigma_m->median;
+      uncertainty["num_weak_points"] = c.num_weak_points;
+    }
+    uncertainty_html +=
+        HtmlTable({"1-sigma of", "median", "95 %", "max"}, rows) + "<p>" +
+        std::to_string(c.num_images) + " images, " +
+        std::to_string(c.num_points) + " points" +
+        (c.point_sigma_m ? ", " + std::to_string(c.num_weak_points) +
+                               " weak points (largest-axis sigma above 3x "
+                               "the median)"
+                         : std::string()) +
+        ".</p>\n";
+    for (const std::string& warning : c.warnings) {
+      uncertainty_html += "<p class=\"bad\">" + HtmlEscape(warning) + "</p>\n";
+    }
+    if (c.num_samples > 0) {
+      uncertainty["num_samples"] = c.num_samples;
+      uncertainty["log_scale_sigma"] = c.log_scale_sigma;
+      uncertainty_html +=
+          "<p>" + std::to_string(c.num_samples) +
+          " joint draws of the model's error (samples.bin) for the laser "
+          "scale's Monte Carlo; their scale spreads by " +
+          Fixed(100.0 * c.log_scale_sigma, 2) + " % (" +
+          HtmlEscape(c.log_scale_meaning) + ").</p>\n";
+    }
+    // The least certain images first: where the model is weakest.
+    std::vector<size_t> order(c.cameras.NumRows());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+      return c.cameras.Double(a, "sigma_position_m") >
+             c.cameras.Double(b, "sigma_position_m");
+    });
+    std::vector<std::vector<std::string>> worst;
+    for (size_t k = 0; k < std::min<size_t>(10, order.size()); ++k) {
+      const size_t i = order[k];
+      worst.push_back({HtmlEscape(c.cameras.Text(i, "name")),
+                       c.cameras.Text(i, "held") == "1" ? "held" : "",
+                       c.cameras.Text(i, "num_points"),
+                       Fixed(c.cameras.Double(i, "sigma_position_m"), 4),
+                       Fixed(c.cameras.Double(i, "sigma_rotation_deg"), 3)});
+    }
+    uncertainty_html +=
+        "<h3>Least certain images</h3>\n" +
+        HtmlTable({"image", "gauge", "points", "centre 1-sigma (m)",
+                   "rotation 1-sigma (deg)"},
+                  worst) +
+        "<p>Every image: <a href=\"uncertainty/cameras.csv\">"
+        "uncertainty/cameras.csv</a>.</p>\n";
+    files.Copy(c.cameras.Path(), "uncertainty/cameras.csv");
+    files.Copy(c.dir / "covariance.json", "uncertainty/covariance.json");
+    if (c.map) {
+      files.Copy(*c.map, "uncertainty/uncertainty_map.png");
+      uncertainty_html += Figure(
+          "uncertainty/uncertainty_map.png", "uncertainty map",
+          "The points in plan view (model x, y) in three classes of their "
+          "largest-axis sigma against the median (grey: at most the median; "
+          "orange: up to 3x; red: weak, above 3x), the cameras on top. Weak "
+          "points gather where few images overlap or their baselines are "
+          "short.");
+    }
+    report["uncertainty"] = uncertainty;
+  } else {
+    uncertainty_html += omit(
+        "No uncertainty section: give uwcolmap covariance_estimator's output "
+        "folder (or bundle_adjuster --BA.covariance 1's OUTPUT/covariance) "
+        "with --covariance.");
   }
 
   // --------------------------------------------------------- stock vs ours
@@ -868,11 +1015,13 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
       "</code>. Sections: <a href=\"#map\">map</a> &middot; <a "
       "href=\"#scale\">scale</a> &middot; <a href=\"#overlays\">laser "
       "spots</a> &middot; <a href=\"#navigation\">navigation</a> &middot; "
+      "<a href=\"#uncertainty\">uncertainty</a> &middot; "
       "<a href=\"#compare\">stock colmap vs ours</a> &middot; <a "
       "href=\"#dense\">dense surface</a> &middot; <a href=\"#time\">time</a> "
       "&middot; <a href=\"#read\">how to read it</a></p>\n" +
       summary_html + map_html + scale_html + overlays_html + nav_html +
-      compare_html + dense_html + time_html + read_html + files_html;
+      uncertainty_html + compare_html + dense_html + time_html + read_html +
+      files_html;
   const std::string html = HtmlPage(options.title, body);
   files.Add("index.html", html);
 

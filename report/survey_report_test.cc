@@ -49,9 +49,10 @@ TEST_F(SurveyReportTest, WritesEverySectionFromEveryInput) {
       WriteSurveyReport(inputs_, SurveyReportOptions(), out);
   EXPECT_EQ(result.index_path, out / "index.html");
   EXPECT_TRUE(result.omitted.empty());
-  // The map, 3 laser plots, 2 thumbnails, 2 prior plots.
-  EXPECT_EQ(result.num_images, 8u);
-  ExpectImagesInFolder(out, 8);
+  // The map, 3 laser plots, 2 thumbnails, 2 prior plots, the uncertainty
+  // map.
+  EXPECT_EQ(result.num_images, 9u);
+  ExpectImagesInFolder(out, 9);
   for (const std::string& name : result.files) {
     EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
   }
@@ -70,9 +71,20 @@ TEST_F(SurveyReportTest, WritesEverySectionFromEveryInput) {
   for (const char* text :
        {"1.01250", "[1.00750, 1.01750]", "4 registered of 5 in the navigation",
         "0.4077 px/m", "L0-L1", "2.50 mm", "95.0 %", "Total time", "60 s",
-        "colmap BA + model_aligner (camera centres)", "(+0.250, -0.500, "}) {
+        "colmap BA + model_aligner (camera centres)", "(+0.250, -0.500, ",
+        // The uncertainty section and the laser scale's model sampling.
+        "gauge <b>priors</b>", "0.0310", "3 weak points",
+        "image 3.png sees 4 points only", "spreads by 7.05 %",
+        "200 draws of its covariance", "calibration 64 %, model 36 %",
+        "z = +4.25: beyond 3 &sigma;"}) {
     EXPECT_NE(html.find(text), std::string::npos) << text;
   }
+  // The least certain image first.
+  const size_t worst = html.find("Least certain images");
+  ASSERT_NE(worst, std::string::npos);
+  EXPECT_LT(html.find("<td>2.png</td>", worst),
+            html.find("<td>0.png</td>", worst));
+  EXPECT_TRUE(fs::is_regular_file(out / "uncertainty/cameras.csv"));
   // Per laser / pair: L0 has 2 images with a scale, mean 1.02.
   EXPECT_NE(html.find("<td>L0</td><td>2</td><td>1.02000</td>"),
             std::string::npos);
@@ -85,7 +97,10 @@ TEST_F(SurveyReportTest, WritesEverySectionFromEveryInput) {
             1);
   EXPECT_EQ(report.at("total_time_s").get<double>(), 60.0);
   EXPECT_EQ(report.at("dense_surface").at("coverage").get<double>(), 0.95);
-  EXPECT_EQ(report.at("num_images_in_index").get<size_t>(), 8u);
+  EXPECT_EQ(report.at("num_images_in_index").get<size_t>(), 9u);
+  EXPECT_EQ(report.at("uncertainty").at("gauge"), "priors");
+  EXPECT_EQ(report.at("uncertainty").at("num_samples"), 200);
+  EXPECT_EQ(report.at("scale").at("navigation_z").get<double>(), 4.25);
   const std::string residuals = ReadFileToString(out / "prior_residuals.csv");
   EXPECT_EQ(residuals.rfind("image,dive,error_x_m", 0), 0u);
   EXPECT_NE(residuals.find("3.png,2,0.000000,0.500000,0.000000,0.500000,"
@@ -103,7 +118,7 @@ TEST_F(SurveyReportTest, LeavesOutSectionsWithoutInputsAndSaysSo) {
   EXPECT_GE(result.omitted.size(), 6u);
   const std::string html = ReadFileToString(out / "index.html");
   for (const char* flag : {"--mesh", "--laser_report", "--ba_report",
-                           "--compare_table", "--timings"}) {
+                           "--compare_table", "--timings", "--covariance"}) {
     EXPECT_NE(html.find(flag), std::string::npos) << flag;
   }
   EXPECT_NE(html.find("4 registered"), std::string::npos);

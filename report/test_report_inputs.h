@@ -104,7 +104,11 @@ inline SurveyReportInputs WriteTestReportInputs(
                 R"({"format": "uwmetric-laser-scale", "version": 1,
  "method": "fum", "num_iterations": 500, "scale": 1.0125, "sigma": 0.0025,
  "ci95": [1.0075, 1.0175], "birge_ratio": 0.8, "num_images": 3,
- "num_accepted": 2})");
+ "num_accepted": 2,
+ "model_draws": {"count": 200, "gauge": "priors", "meaning": "..."},
+ "variance_by_source": {"calibration": {"sigma": 0.002, "share": 0.64},
+                        "model": {"sigma": 0.0015, "share": 0.36}},
+ "navigation": {"log_scale_sigma": 0.05, "z": 4.25, "consistent": false}})");
   WriteTestText(inputs.laser_report_dir / "items.csv",
                 "image,item,nominal,problem,mc_mean,mc_std,p2_5,p97_5,"
                 "num_invalid\n"
@@ -137,6 +141,28 @@ inline SurveyReportInputs WriteTestReportInputs(
   "median_distance": 0.0025, "p90_distance": 0.006, "rms_distance": 0.004,
   "mean_signed_distance": -0.0005, "observed_area": 30.0,
   "covered_area": 28.5, "coverage": 0.95, "coverage_tolerance": 0.0225}})");
+  inputs.covariance_dir = dir / "covariance";
+  WriteTestText(inputs.covariance_dir / "covariance.json",
+                R"({"format": "uwmetric-covariance", "version": 1,
+ "gauge": "priors", "gauge_description": "the navigation priors",
+ "pixel_sigma_px": 0.35, "pixel_sigma_source": "estimated",
+ "num_images": 4, "num_points": 100,
+ "images": {"sigma_position_m": {"median": 0.012, "p95": 0.02, "max": 0.031},
+            "sigma_rotation_deg": {"median": 0.08, "p95": 0.1, "max": 0.14}},
+ "points": {"num_weak": 3, "weak_rule": "...",
+            "sigma_largest_axis_m": {"median": 0.009, "p95": 0.015,
+                                     "max": 0.056}},
+ "samples": {"count": 200, "log_scale_sigma": 0.0705,
+             "log_scale_meaning": "the navigation's own scale uncertainty"},
+ "warnings": ["image 3.png sees 4 points only"]})");
+  WriteTestText(inputs.covariance_dir / "cameras.csv",
+                "image_id,name,held,num_points,sigma_x_m,sigma_y_m,sigma_z_m,"
+                "sigma_position_m,sigma_rotation_deg\n"
+                "1,0.png,0,40,0.01,0.01,0.005,0.015,0.08\n"
+                "2,1.png,0,30,0.01,0.01,0.005,0.012,0.07\n"
+                "3,2.png,0,35,0.02,0.02,0.01,0.031,0.14\n"
+                "4,3.png,0,4,0.01,0.01,0.005,0.011,0.09\n");
+  WriteTestPng(inputs.covariance_dir / "uncertainty_map.png", 300, 200);
   inputs.timings_path = dir / "timings.csv";
   WriteTestText(inputs.timings_path,
                 "stage,seconds\n\"copy the survey\",2\n\"dense_mesher\",40\n"

@@ -23,8 +23,12 @@
 # laser images, laserscale apply; one more row per chain ("... +
 # dense_mesher + laserscale apply", the scaled model against the truth) and
 # OUT_DIR/chain.csv: the laser scale, its 95 % interval, the truth (the
-# similarity of the unscaled model to the true cameras), its error, and the
-# dense mesh's accuracy and coverage against the true surface.
+# similarity of the unscaled model to the true cameras), its error, the
+# dense mesh's accuracy and coverage against the true surface, each
+# source's share of the scale's variance, and for the fused model the
+# laser scale's z-score against the navigation's own scale. The laser
+# scale's Monte Carlo re-samples each model from its covariance
+# (--Covariance.samples N draws, 200).
 #
 # Columns: camera RMSE vs truth as the model stands (absolute: every result
 # is in the navigation's frame) and after a least-squares similarity to the
@@ -46,7 +50,8 @@
 #             (default MODEL_DIR/../../database.db when it exists);
 #             --laser_database DB: the database with SIM_DIR's laser images
 #             (scripts/add_laser_images.sh) for the whole chain, with
-#             --DenseMesher.max_image_size N (512) and --mc N (5000); any
+#             --DenseMesher.max_image_size N (512), --mc N (5000) and
+#             --Covariance.samples N (200); any
 #             other flag describes the camera on the vehicle and goes to
 #             uwcolmap (--mount, --lever_arm, --boresight, --time_offset,
 #             --image_times)
@@ -80,6 +85,7 @@ database=""
 laser_database=""
 max_image_size=512
 mc=5000
+model_draws=200
 while [[ $# -gt 0 ]]; do
   if [[ $# -lt 2 ]]; then
     echo "compare_with_colmap: flag $1 has no value" >&2
@@ -91,10 +97,17 @@ while [[ $# -gt 0 ]]; do
     --laser_database) laser_database=$2 ;;
     --DenseMesher.max_image_size) max_image_size=$2 ;;
     --mc) mc=$2 ;;
+    --Covariance.samples) model_draws=$2 ;;
     *) mount_flags+=("$1" "$2") ;;
   esac
   shift 2
 done
+# With the whole chain, the fused model's covariance and joint draws of it,
+# which the laser scale's Monte Carlo re-samples the model with.
+covariance_flags=()
+if [[ -n "$laser_database" ]]; then
+  covariance_flags=(--BA.covariance 1 --Covariance.samples "$model_draws")
+fi
 if [[ -z "$database" && -f "$model/../../database.db" ]]; then
   database="$model/../../database.db"
 fi
@@ -246,10 +259,17 @@ run ours_posterior "$uwcolmap" bundle_adjuster --input_path "$model" \
 add_row "ours --Nav.strategy posterior" "$out/ours_posterior" "$(seconds_since "$start")"
 
 for weight in "${nav_weights[@]}"; do
+  # Only the first weight's model goes into the chain: it alone needs the
+  # covariance.
+  weight_covariance=()
+  if [[ "$weight" == "${nav_weights[0]}" ]]; then
+    weight_covariance=("${covariance_flags[@]}")
+  fi
   start=$(now)
   run "ours_prior_$weight" "$uwcolmap" bundle_adjuster --input_path "$model" \
     --output_path "$out/ours_prior_$weight" --nav "$sim/nav.csv" \
-    "${mount_flags[@]}" --Nav.strategy prior --Nav.weight "$weight" "${ba_flags[@]}"
+    "${mount_flags[@]}" --Nav.strategy prior --Nav.weight "$weight" \
+    "${ba_flags[@]}" "${weight_covariance[@]}"
   seconds=$(seconds_since "$start")
   # The weight used: the noise-level estimate, or the L-curve's choice.
   chosen=$(sed -n 's/.*lambda = \([^ ]*\) px\/m.*/ = \1 px\/m/p' \
@@ -258,13 +278,23 @@ for weight in "${nav_weights[@]}"; do
     "$out/ours_prior_$weight" "$seconds"
 done
 
-# The whole chain: dense mesh, laser scale on it, the model in metres.
+# The whole chain: dense mesh, laser scale on it, the model in metres. The
+# laser scale's Monte Carlo re-samples the model from its covariance: the
+# navigation-fused model's own (bundle_adjuster --BA.covariance 1, gauge
+# priors), colmap's under held coordinates as colmap fixes them.
 chain_rows=()
 chain() {  # chain LABEL MODEL_DIR
-  local label=$1 dir=$2 name work start dense_s laser_s
+  local label=$1 dir=$2 name work start dense_s laser_s covariance
   name=$(basename "$dir")
   work="$out/chain/$name"
   mkdir -p "$work"
+  covariance="$dir/covariance"
+  if [[ ! -f "$covariance/samples.bin" ]]; then
+    covariance="$work/covariance"
+    run "covariance_$name" "$uwcolmap" covariance_estimator --input_path "$dir" \
+      --output_path "$covariance" --Covariance.gauge held \
+      --Covariance.samples "$model_draws" "${ba_flags[@]}"
+  fi
   start=$(now)
   run "dense_mesher_$name" "$uwcolmap" dense_mesher --input_path "$dir" \
     --image_path "$sim/images" --output_path "$work/mesh.ply" \
@@ -283,7 +313,7 @@ chain() {  # chain LABEL MODEL_DIR
   run "laserscale_estimate_$name" "$laserscale" estimate --mesh "$work/mesh.ply" \
     --poses "$work/poses.json" --spots "$work/spots.json" \
     --lasers "$sim/lasers.json" --overlays "$work/overlays" --mc "$mc" \
-    --out "$work/report"
+    --covariance "$covariance" --input_path "$dir" --out "$work/report"
   run "laserscale_apply_$name" "$laserscale" apply --input_path "$dir" \
     --scale "$work/report/scale.json" --output_path "$out/${name}_laser" \
     --input_mesh "$work/mesh.ply" --output_mesh "$out/${name}_laser/mesh.ply"
@@ -298,11 +328,16 @@ compare = json.load(open(work + "/compare.json"))
 truth = compare["alignment"]["reference_from_model"]["scale"]
 dense = compare["dense_surface"]
 s, (low, high) = scale["scale"], scale["ci95"]
-print('"%s",%.6f,%.6f,%.6f,%.6f,%+.4f,%d,%d,%d,%.6f,%.4f,%.2f,%s,%s' % (
+shares = scale.get("variance_by_source", {})
+share = lambda source: 100 * shares.get(source, {}).get("share", 0.0)
+z = scale.get("navigation", {}).get("z")
+print('"%s",%.6f,%.6f,%.6f,%.6f,%+.4f,%d,%d,%d,%.6f,%.4f,%.2f,%s,%s,%d,%.1f,%.1f,%.1f,%.1f,%s' % (
     label, s, low, high, truth, 100 * (s / truth - 1), low <= truth <= high,
     scale["num_accepted"], scale["num_images"], dense["median_distance"],
     100 * dense["median_over_camera_scene_distance"], 100 * dense["coverage"],
-    dense_s, laser_s))
+    dense_s, laser_s, scale["model_draws"]["count"], share("features"),
+    share("spots"), share("calibration"), share("model"),
+    "" if z is None else "%.3f" % z))
 PY
 )")
 }
@@ -317,7 +352,7 @@ if [[ -n "$laser_database" ]]; then
   chain "ours --Nav.strategy prior --Nav.weight ${nav_weights[0]}" \
     "$out/ours_prior_${nav_weights[0]}"
   {
-    echo "method,laser_scale,ci95_low,ci95_high,true_scale,scale_error_percent,truth_in_ci95,accepted_images,laser_images,mesh_median_m,mesh_median_percent_of_range,mesh_coverage_percent,dense_s,laser_s"
+    echo "method,laser_scale,ci95_low,ci95_high,true_scale,scale_error_percent,truth_in_ci95,accepted_images,laser_images,mesh_median_m,mesh_median_percent_of_range,mesh_coverage_percent,dense_s,laser_s,model_draws,features_share_percent,spots_share_percent,calibration_share_percent,model_share_percent,navigation_z"
     printf '%s\n' "${chain_rows[@]}"
   } > "$out/chain.csv"
 fi
@@ -339,7 +374,8 @@ fi
 if [[ -n "$laser_database" ]]; then
   echo "Whole chain (dense_mesher at $max_image_size px, laser scale with $mc Monte Carlo samples; $out/chain.csv):"
   awk -F, 'NR > 1 { gsub(/"/, "", $1)
-    printf "  %s: s = %.5f [%.5f, %.5f], truth %.5f, error %+.3f %% (%s), %d of %d laser images; mesh median %.2f mm = %.3f %% of the range, coverage %.1f %%\n",
+    printf "  %s: s = %.5f [%.5f, %.5f], truth %.5f, error %+.3f %% (%s), %d of %d laser images; mesh median %.2f mm = %.3f %% of the range, coverage %.1f %%; variance: features %.0f %%, spots %.0f %%, calibration %.0f %%, model %.0f %%%s\n",
       $1, $2, $3, $4, $5, $6, $7 ? "inside its 95 % interval" : "OUTSIDE its 95 % interval",
-      $8, $9, 1000 * $10, $11, $12 }' "$out/chain.csv"
+      $8, $9, 1000 * $10, $11, $12, $16, $17, $18, $19,
+      $20 == "" ? "" : sprintf("; against the navigation z = %+.2f", $20) }' "$out/chain.csv"
 fi

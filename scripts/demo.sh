@@ -261,7 +261,8 @@ printf "  %-78s %5d\n" "total (after setup)" "$total_s"
   --ba_report "$model/ba_report.json" --nav "$sim/nav.csv" \
   --laser_report "$chain/report" --compare_table "$out/compare/table.csv" \
   --dense_comparison "$chain/compare.json" --mesh "$chain/mesh.ply" \
-  --timings "$out/timings.csv" --truth_dir "$sim" --output_path "$out/report" \
+  --timings "$out/timings.csv" --truth_dir "$sim" \
+  --covariance "$model/covariance" --output_path "$out/report" \
   > "$out/logs/survey_report.log" 2>&1 ||
   { cat "$out/logs/survey_report.log"; fail "survey_report failed"; }
 echo "Survey report: $out/report/index.html"

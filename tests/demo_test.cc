@@ -81,6 +81,15 @@ TEST(Demo, ReducedDemoRunsEndToEndAndPrintsTheSummary) {
   EXPECT_LE(low, true_scale);
   EXPECT_GE(high, true_scale);
   EXPECT_LT(std::abs(s / true_scale - 1.0), 0.01);
+  // The Monte Carlo re-sampled the fused model from its covariance (gauge
+  // priors) and compared the laser scale with the navigation's.
+  EXPECT_EQ(scale.at("model_draws").at("count").get<int>(), 200);
+  EXPECT_EQ(scale.at("model_draws").at("gauge"), "priors");
+  EXPECT_TRUE(scale.at("variance_by_source").contains("model"));
+  EXPECT_TRUE(scale.at("navigation").at("consistent").get<bool>());
+  const nlohmann::json report = ReadJson(kDemoDir / "report" / "report.json");
+  EXPECT_EQ(report.at("uncertainty").at("gauge"), "priors");
+  EXPECT_EQ(report.at("uncertainty").at("num_samples").get<int>(), 200);
 
   // The dense mesh of the navigation-fused model (acceptance 1's figures).
   const nlohmann::json dense = model_compare.at("dense_surface");

@@ -18,6 +18,7 @@
 #include "laserscale/laser_poses_io.h"
 #include "laserscale/spots_io.h"
 #include "tests/support/process.h"
+#include "tests/support/uwsim_survey.h"
 
 namespace uw {
 namespace {
@@ -29,6 +30,7 @@ using testing::Quoted;
 const fs::path kSurveyDir = UW_SURVEY_DIR;
 const fs::path kLaserDir = UW_LASER_DIR;
 const fs::path kLaserscale = fs::path(UW_BIN_DIR) / "laserscale";
+const fs::path kUwcolmap = fs::path(UW_BIN_DIR) / "uwcolmap";
 
 std::string RunLaserscale(const std::string& command) {
   const auto result = RunProcess(command, true);
@@ -66,12 +68,27 @@ SimilarityResult TruthFromModel(const Reconstruction& model,
   return EstimateSimilarity(src, dst, nullptr, options);
 }
 
-std::string Localize(const fs::path& poses) {
+std::string Localize(const fs::path& poses,
+                     const fs::path& model = kSurveyDir / "sparse/0") {
   return RunLaserscale(kLaserscale.string() + " localize --database_path " +
                        Quoted(kLaserDir / "database.db") + " --input_path " +
-                       Quoted(kSurveyDir / "sparse/0") + " --image_list_path " +
+                       Quoted(model) + " --image_list_path " +
                        Quoted(kLaserDir / "laser_list.txt") + " --out " +
                        Quoted(poses));
+}
+
+// The true surface in the frame of stock colmap's model.
+void WriteTrueSurfaceInModelFrame(const fs::path& path) {
+  const fs::path sim = kSurveyDir / "sim";
+  const Sim3d model_from_truth =
+      TruthFromModel(ReadModel(kSurveyDir / "sparse/0"),
+                     ReadModel(sim / "truth"))
+          .b_from_a.Inverse();
+  TriangleMesh surface = ReadPly(sim / "truth/mesh.ply");
+  for (Eigen::Vector3d& vertex : surface.vertices) {
+    vertex = model_from_truth * vertex;
+  }
+  WritePly(surface, path);
 }
 
 // Acceptance 5: each laser image localized against stock colmap's model,
@@ -186,12 +203,7 @@ TEST(Laserscale, DetectLocalizeEstimateApplyOnTheDefaultSurvey) {
   const Sim3d truth_from_model =
       TruthFromModel(model, ReadModel(sim / "truth")).b_from_a;
   const double true_scale = truth_from_model.scale;
-  TriangleMesh true_surface = ReadPly(sim / "truth/mesh.ply");
-  const Sim3d model_from_truth = truth_from_model.Inverse();
-  for (Eigen::Vector3d& vertex : true_surface.vertices) {
-    vertex = model_from_truth * vertex;
-  }
-  WritePly(true_surface, dir / "true_surface.ply");
+  WriteTrueSurfaceInModelFrame(dir / "true_surface.ply");
   RunLaserscale(kLaserscale.string() + " sparse_surface --input_path " +
                 Quoted(kSurveyDir / "sparse/0") + " --output_path " +
                 Quoted(dir / "sparse_surface.ply"));
@@ -234,6 +246,141 @@ TEST(Laserscale, DetectLocalizeEstimateApplyOnTheDefaultSurvey) {
   const double remaining =
       TruthFromModel(metric, ReadModel(sim / "truth")).b_from_a.scale;
   EXPECT_NEAR(remaining, 1.0, 0.005);
+}
+
+// Issue 16, item 2: with the model's covariance draws the Monte Carlo also
+// re-samples the model, reports every source's share of the variance, and
+// for a navigation-fused model the z-score against the navigation's scale;
+// apply warns when that disagrees; draws or poses of another model are
+// refused.
+TEST(Laserscale, EstimateSamplesTheModelFromItsCovariance) {
+  const fs::path dir = FreshTestDir("uw_laserscale_covariance");
+  const fs::path sim = kSurveyDir / "sim";
+  const fs::path model = kSurveyDir / "sparse/0";
+  RunLaserscale(kLaserscale.string() + " detect --images " +
+                Quoted(sim / "laser_images") + " --lasers " +
+                Quoted(sim / "lasers.json") + " --input_path " + Quoted(model) +
+                " --out " + Quoted(dir / "spots.json"));
+  Localize(dir / "poses.json");
+  WriteTrueSurfaceInModelFrame(dir / "true_surface.ply");
+  RunLaserscale(kUwcolmap.string() + " covariance_estimator --input_path " +
+                Quoted(model) + " --output_path " + Quoted(dir / "cov") +
+                " --Covariance.gauge held --Covariance.samples 100");
+  const std::string estimate =
+      kLaserscale.string() + " estimate --poses " + Quoted(dir / "poses.json") +
+      " --spots " + Quoted(dir / "spots.json") + " --lasers " +
+      Quoted(sim / "lasers.json") + " --mc 1000 --mesh " +
+      Quoted(dir / "true_surface.ply");
+  RunLaserscale(estimate + " --variance_shares 0 --out " +
+                Quoted(dir / "exact"));
+  const std::string output = RunLaserscale(
+      estimate + " --covariance " + Quoted(dir / "cov") + " --input_path " +
+      Quoted(model) + " --out " + Quoted(dir / "sampled"));
+  std::cout << output;
+  const nlohmann::json exact =
+      nlohmann::json::parse(ReadFileToString(dir / "exact/scale.json"));
+  const nlohmann::json sampled =
+      nlohmann::json::parse(ReadFileToString(dir / "sampled/scale.json"));
+  EXPECT_EQ(exact.at("model_draws").at("count"), 0);
+  EXPECT_FALSE(exact.contains("variance_by_source"));
+  EXPECT_EQ(sampled.at("model_draws").at("count"), 100);
+  EXPECT_EQ(sampled.at("model_draws").at("gauge"), "held");
+  EXPECT_FALSE(sampled.contains("navigation")) << "no priors, no z-score";
+  // The model's error adds to the others: the interval widens (up to the
+  // Monte Carlo's own noise), and the shares of independent sources sum
+  // to about one.
+  EXPECT_GE(sampled.at("sigma").get<double>(),
+            0.98 * exact.at("sigma").get<double>());
+  double share_sum = 0.0;
+  for (const char* source : {"features", "spots", "calibration", "model"}) {
+    ASSERT_TRUE(sampled.at("variance_by_source").contains(source)) << source;
+    const double share =
+        sampled["variance_by_source"][source].at("share").get<double>();
+    EXPECT_GT(share, 0.0) << source;
+    share_sum += share;
+  }
+  EXPECT_NEAR(share_sum, 1.0, 0.2);
+  const double true_scale =
+      TruthFromModel(ReadModel(model), ReadModel(sim / "truth")).b_from_a.scale;
+  EXPECT_LE(sampled.at("ci95")[0].get<double>(), true_scale);
+  EXPECT_GE(sampled.at("ci95")[1].get<double>(), true_scale);
+
+  // The navigation-fused model with its covariance under the priors: the
+  // laser scale against the navigation's own.
+  const fs::path fused = dir / "fused";
+  RunLaserscale(kUwcolmap.string() + " bundle_adjuster --input_path " +
+                Quoted(model) + " --output_path " + Quoted(fused) + " --nav " +
+                Quoted(sim / "nav.csv") + " " + testing::SurveyMountFlags(sim) +
+                " --BA.covariance 1 --Covariance.samples 100");
+  Localize(dir / "poses_fused.json", fused);
+  RunLaserscale(kLaserscale.string() + " sparse_surface --input_path " +
+                Quoted(fused) + " --output_path " + Quoted(dir / "fused.ply"));
+  const std::string fused_estimate =
+      kLaserscale.string() + " estimate --poses " +
+      Quoted(dir / "poses_fused.json") + " --spots " +
+      Quoted(dir / "spots.json") + " --lasers " + Quoted(sim / "lasers.json") +
+      " --mc 500 --mesh " + Quoted(dir / "fused.ply") + " --covariance " +
+      Quoted(fused / "covariance") + " --input_path " + Quoted(fused);
+  std::cout << RunLaserscale(fused_estimate + " --out " +
+                             Quoted(dir / "fused_report"));
+  nlohmann::json fused_scale =
+      nlohmann::json::parse(ReadFileToString(dir / "fused_report/scale.json"));
+  const nlohmann::json& navigation = fused_scale.at("navigation");
+  EXPECT_GT(navigation.at("log_scale_sigma").get<double>(), 0.0);
+  const double z = navigation.at("z").get<double>();
+  EXPECT_LT(std::abs(z), 3.0);
+  EXPECT_EQ(navigation.at("consistent").get<bool>(), std::abs(z) <= 3.0);
+  EXPECT_NEAR(z,
+              (fused_scale.at("scale").get<double>() - 1.0) /
+                  std::hypot(fused_scale.at("sigma").get<double>(),
+                             navigation.at("log_scale_sigma").get<double>()),
+              1e-9);
+  // apply warns loudly on a scale that disagrees with the navigation.
+  fused_scale["navigation"]["z"] = 4.25;
+  fused_scale["navigation"]["consistent"] = false;
+  std::ofstream(dir / "disagrees.json") << fused_scale.dump();
+  const std::string applied = RunLaserscale(
+      kLaserscale.string() + " apply --input_path " + Quoted(fused) +
+      " --scale " + Quoted(dir / "disagrees.json") + " --output_path " +
+      Quoted(dir / "applied"));
+  EXPECT_NE(applied.find("WARNING"), std::string::npos) << applied;
+  EXPECT_NE(applied.find("4.2 sigma"), std::string::npos) << applied;
+
+  // Draws of another model, poses of another model, a version 1 poses.json,
+  // --covariance alone: errors, and no report.
+  nlohmann::json poses =
+      nlohmann::json::parse(ReadFileToString(dir / "poses.json"));
+  poses["version"] = 1;
+  for (auto& image : poses["images"]) {
+    if (!image.contains("inliers")) continue;
+    for (auto& row : image["inliers"]) row.erase(5);
+  }
+  std::ofstream(dir / "poses_v1.json") << poses.dump();
+  for (const auto& [flags, words] :
+       std::vector<std::pair<std::string, std::string>>{
+           {" --poses " + Quoted(dir / "poses.json") + " --covariance " +
+                Quoted(dir / "cov") + " --input_path " + Quoted(fused),
+            "adjusted since"},
+           {" --poses " + Quoted(dir / "poses.json") + " --covariance " +
+                Quoted(fused / "covariance") + " --input_path " + Quoted(fused),
+            "another model"},
+           {" --poses " + Quoted(dir / "poses_v1.json") + " --covariance " +
+                Quoted(dir / "cov") + " --input_path " + Quoted(model),
+            "version 1"},
+           {" --poses " + Quoted(dir / "poses.json") + " --covariance " +
+                Quoted(dir / "cov"),
+            "--input_path"}}) {
+    const fs::path out = dir / ("refused_" + std::to_string(words.size()));
+    const auto result = RunProcess(
+        kLaserscale.string() + " estimate --spots " +
+            Quoted(dir / "spots.json") + " --lasers " +
+            Quoted(sim / "lasers.json") + " --mc 50 --mesh " +
+            Quoted(dir / "true_surface.ply") + flags + " --out " + Quoted(out),
+        true);
+    EXPECT_NE(result.exit_code, 0) << flags;
+    EXPECT_NE(result.output.find(words), std::string::npos) << result.output;
+    EXPECT_FALSE(fs::exists(out / "scale.json")) << flags;
+  }
 }
 
 // Acceptance 7: bad input gives per-item flags or a clear error, never a

@@ -77,7 +77,8 @@ TEST(ReportRender, DemoReportRendersWithEveryImage) {
           Quoted(chain / "compare.json") + " --mesh " +
           Quoted(chain / "mesh.ply") + " --timings " +
           Quoted(out / "timings.csv") + " --truth_dir " + Quoted(out / "sim") +
-          " --output_path " + Quoted(report),
+          " --covariance " + Quoted(model / "covariance") + " --output_path " +
+          Quoted(report),
       true);
   ASSERT_EQ(command.exit_code, 0) << command.output;
   std::cout << command.output;

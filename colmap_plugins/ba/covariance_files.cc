@@ -170,6 +170,8 @@ double EllipsoidVolume95(const Eigen::Matrix3d& covariance) {
 nlohmann::json CovarianceSummaryJson(const BundleCovariance& covariance,
                                      const Reconstruction& model) {
   nlohmann::json json;
+  json["format"] = "uwmetric-covariance";
+  json["version"] = 1;
   json["gauge"] = CovarianceGaugeName(covariance.gauge);
   json["gauge_description"] = covariance.gauge_description;
   json["pixel_sigma_px"] = covariance.pixel_sigma_px;

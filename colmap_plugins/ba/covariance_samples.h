@@ -9,7 +9,10 @@
 // measurement made inside the model errs by; the similarity's log scale is
 // kept apart (with the priors gauge, the navigation's own scale error).
 //
-// samples.bin, beside covariance.bin, with the same model fingerprint:
+// samples.bin, beside covariance.bin, with the same model fingerprint (of
+// the model's structure; covariance.bin also checks every image and point
+// is where it was, which readers of the draws use to refuse a model
+// adjusted since):
 //   "UWSMP\0\0\1", fingerprint u64, counts (cameras, images, points,
 //   samples) u64; per camera: id u32, n u32, n parameter indices u32; image
 //   ids u32; point ids u64; then per draw: log scale f64, the camera deltas
@@ -62,10 +65,10 @@ struct CovarianceSamples {
 // similarity removed from the draws are both made of it.
 Eigen::Matrix<double, 3, 7> SimilarityTangentAt(const Eigen::Vector3d& x);
 
-// Removes from each draw the similarity (Umeyama, every point weighted
-// alike) that maps its drawn points onto the nominal ones of `model`, from
-// points and images alike, and stores that similarity's log scale (how
-// much larger the drawn model is). Needs at least 3 points.
+// Removes from each draw the first-order similarity (least squares, every
+// point weighted alike) that maps its drawn points onto the nominal ones of
+// `model`, from points and images alike, and stores that similarity's log
+// scale (how much larger the drawn model is). Needs at least 3 points.
 void SeparateSimilarity(const Reconstruction& model,
                         CovarianceSamples* samples);
 

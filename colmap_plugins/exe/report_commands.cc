@@ -33,6 +33,9 @@ void AddSurveyReportFlags(CommandLine* cli,
            "timings.csv (stage,seconds): time per stage");
   cli->Add("--truth_dir", &inputs.truth_dir,
            "uwsim output folder: errors against the truth");
+  cli->Add("--covariance", &inputs.covariance_dir,
+           "covariance_estimator's output folder (or bundle_adjuster "
+           "--BA.covariance 1's OUTPUT/covariance): the model's uncertainty");
   SurveyReportOptions& report = options->report;
   cli->Add("--title", &report.title, "Title of the page");
   cli->Add("--map_width", &report.map_width_px, "Width of the survey map (px)");

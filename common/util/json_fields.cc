@@ -125,14 +125,26 @@ bool JsonFields::Read(const std::string& key, Eigen::Matrix3d* value) {
 }
 
 void JsonFields::RequireFormat(const std::string& format, int version) {
+  RequireFormat(format, version, version);
+}
+
+int JsonFields::RequireFormat(const std::string& format, int oldest_version,
+                              int newest_version) {
   std::string read_format;
   int read_version = 0;
   Require("format", &read_format);
   Require("version", &read_version);
-  if (read_format != format || read_version != version) {
-    throw ErrorAt(what_, ": expected format \"", format, "\" version ", version,
-                  ", got \"", read_format, "\" version ", read_version);
+  if (read_format != format || read_version < oldest_version ||
+      read_version > newest_version) {
+    const std::string versions = oldest_version == newest_version
+                                     ? std::to_string(newest_version)
+                                     : std::to_string(oldest_version) + " to " +
+                                           std::to_string(newest_version);
+    throw ErrorAt(what_, ": expected format \"", format, "\" version ",
+                  versions, ", got \"", read_format, "\" version ",
+                  read_version);
   }
+  return read_version;
 }
 
 void JsonFields::RejectUnknown() const {

@@ -113,6 +113,9 @@ class JsonFields {
 
   // A uwmetric file's "format" and "version": both required and ours.
   void RequireFormat(const std::string& format, int version);
+  // The same for a reader of several versions: returns the one read.
+  int RequireFormat(const std::string& format, int oldest_version,
+                    int newest_version);
 
   // Called once every field is read: a key nothing asked for is a typo or a
   // parameter this version does not have.

@@ -28,7 +28,24 @@ void AddApplyFlags(CommandLine* cli, ApplyOptions* options) {
 }
 
 void RunApply(const ApplyOptions& options) {
-  const double scale = ReadScaleFromJson(options.scale_path);
+  const ScaleJson scale_json = ReadScaleFromJson(options.scale_path);
+  const double scale = scale_json.scale;
+  if (scale_json.navigation && !scale_json.navigation->consistent) {
+    fmt::print(stderr,
+               "[apply] WARNING: the laser scale {:.5f} and the navigation's "
+               "own scale of this fused model disagree by {:.1f} sigma "
+               "(|z| > 3): one of them is wrong (laser calibration, spots, "
+               "navigation). Check before publishing anything measured in "
+               "the scaled model.\n",
+               scale, scale_json.navigation->z);
+  }
+  if (scale_json.num_model_draws == 0) {
+    fmt::print(stderr,
+               "[apply] warning: {} took the model as exact (no "
+               "--covariance): its interval leaves out the model's own "
+               "error.\n",
+               options.scale_path.c_str());
+  }
   Reconstruction model = ReadModel(options.input_path);
   Sim3d scaled_from_model;
   scaled_from_model.scale = scale;

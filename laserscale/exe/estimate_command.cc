@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "colmap_plugins/scene/model_io.h"
 #include "common/mesh/mesh.h"
 #include "common/util/error.h"
 #include "laserscale/exe/scale_method_flags.h"
@@ -27,6 +28,18 @@ void AddEstimateFlags(CommandLine* cli, EstimateOptions* options) {
       ->required();
   cli->Add("--setup", &options->setup_name,
            "Set-up of lasers.json (default: the only one)");
+  cli->Add("--covariance", &options->covariance_path,
+           "The model's covariance folder (uwcolmap covariance_estimator "
+           "--Covariance.samples 200): re-sample the model's intrinsics, "
+           "points and surface; without it the model is taken as exact");
+  cli->Add("--input_path", &options->input_path,
+           "The COLMAP model the covariance and poses.json belong to (with "
+           "--covariance)");
+  cli->Add("--surface_points", &images.surface_points,
+           "Model points whose mean draw moves the surface under an image's "
+           "laser hits");
+  cli->Add("--variance_shares", &images.variance_shares,
+           "Also run each source alone, for its share of the variance (1/0)");
   AddScaleMethodFlag(cli, "--method", &images.method,
                      "fum, pcm, direct or davis_tusting");
   cli->Add("--mc", &monte_carlo.num_iterations,
@@ -58,8 +71,33 @@ void RunEstimate(const EstimateOptions& options) {
   std::fflush(stdout);
   const RayCaster caster(ReadMesh(options.mesh_path));
   const std::string method = ScaleMethodName(images.method);
+  std::optional<Reconstruction> colmap_model;
+  std::optional<ModelDraws> draws;
+  ImageScaleEstimationOptions with_model = images;
+  if (!options.covariance_path.empty()) {
+    colmap_model = ReadModel(options.input_path);
+    draws = ReadModelDraws(options.covariance_path, *colmap_model);
+    with_model.model = &*colmap_model;
+    with_model.model_draws = &*draws;
+    fmt::print(
+        "[estimate] {} draws of the model's covariance (gauge {}, log scale "
+        "sigma {:.4f})\n",
+        draws->samples.NumSamples(), draws->gauge.c_str(),
+        draws->log_scale_sigma);
+    if (images.monte_carlo.num_iterations % draws->samples.NumSamples() != 0) {
+      fmt::print(
+          "[estimate] note: {} iterations are not a multiple of the {} "
+          "draws; the first ones are used once more than the others\n",
+          images.monte_carlo.num_iterations, draws->samples.NumSamples());
+    }
+  } else {
+    fmt::print(
+        "[estimate] warning: no --covariance: the model is taken as exact, "
+        "so the interval leaves out its own error\n");
+  }
+  std::fflush(stdout);
   std::vector<ImageEstimate> estimates = EstimateLaserImages(
-      poses, spots, setup, caster, images,
+      poses, spots, setup, caster, with_model,
       [&](size_t i, size_t count, const ImageEstimate& estimate) {
         if (estimate.result) {
           const ImageScaleResult& r = *estimate.result;
@@ -67,14 +105,25 @@ void RunEstimate(const EstimateOptions& options) {
                      count, estimate.name.c_str(), method.c_str(),
                      r.nominal ? *r.nominal : 0.0, r.monte_carlo.std_dev,
                      r.accepted ? "" : ", rejected: ", r.rejection.c_str());
+          if (!r.model_note.empty()) {
+            fmt::print("  model: {}\n", r.model_note.c_str());
+          }
         } else {
           fmt::print("[estimate {}/{}] {}: skipped: {}\n", i + 1, count,
                      estimate.name.c_str(), estimate.problem.c_str());
         }
         std::fflush(stdout);
       });
-  const ModelScaleReport report = CombineImages(
-      std::move(estimates), images.method, images.monte_carlo, options.combine);
+  ModelScaleReport report = CombineImages(std::move(estimates), images.method,
+                                          images.monte_carlo, options.combine);
+  if (draws) {
+    report.num_model_draws = draws->samples.NumSamples();
+    report.model_gauge = draws->gauge;
+    if (draws->ScaleIsNavigations()) {
+      report.navigation =
+          CheckAgainstNavigation(report.model, draws->log_scale_sigma);
+    }
+  }
   WriteScaleReport(report, images.report_dir);
   const CombinedScale& model = report.model;
   const std::string index =
@@ -89,9 +138,36 @@ void RunEstimate(const EstimateOptions& options) {
       *model.nominal, model.ci95_low, model.ci95_high, model.sigma,
       model.images.size(), report.images.size(), model.birge_ratio,
       index.c_str());
+  if (!model.source_sigmas.empty()) {
+    std::string shares;
+    const double variance =
+        model.monte_carlo.std_dev * model.monte_carlo.std_dev;
+    for (const auto& [source, sigma] : model.source_sigmas) {
+      shares += fmt::format(
+          "{}{} {:.0f} %", shares.empty() ? "" : ", ", ScaleSourceName(source),
+          variance > 0.0 ? 100.0 * sigma * sigma / variance : 0.0);
+    }
+    fmt::print("[estimate] share of the variance: {}\n", shares.c_str());
+  }
+  if (report.navigation) {
+    const NavigationScaleCheck& check = *report.navigation;
+    fmt::print(
+        "[estimate] {}the laser scale against the navigation's (scale sigma "
+        "{:.4f}): z = {:+.2f}{}\n",
+        check.consistent ? "" : "WARNING: ", check.log_scale_sigma, check.z,
+        check.consistent ? "" : ", beyond 3 sigma: one of them is wrong");
+  }
 }
 
 }  // namespace
+
+void EstimateOptions::Check() const {
+  images.Check();
+  combine.Check();
+  if (covariance_path.empty() != input_path.empty()) {
+    throw Error("--covariance and --input_path go together");
+  }
+}
 
 Subcommand EstimateCommand() {
   return MakeSubcommand<EstimateOptions>(
@@ -101,13 +177,16 @@ Subcommand EstimateCommand() {
       "confident spot is cast onto the model's mesh through the image's "
       "camera, the method (FUM by default) compares the laser geometry known "
       "in metres with the same quantity measured through the model, and a "
-      "Monte Carlo per image re-samples features, spots and the calibration "
-      "to give the uncertainty. Images are combined into the model's scale "
+      "Monte Carlo per image re-samples features, spots, the calibration "
+      "and, with --covariance, the model's intrinsics, points and surface "
+      "to give the uncertainty, and each source alone for its share. Images "
+      "are combined into the model's scale "
       "with a 95 % interval, and into segments. Multiply the model by the "
       "scale s to get metres (laserscale apply).\n\n"
       "Example:\n"
       "  laserscale estimate --mesh mesh.ply --poses poses.json --spots "
-      "spots.json --lasers lasers.json --method fum --mc 5000 --out report",
+      "spots.json --lasers lasers.json --method fum --mc 5000 --covariance "
+      "cov --input_path sparse/0 --out report",
       AddEstimateFlags, RunEstimate);
 }
 

@@ -15,14 +15,16 @@ struct EstimateOptions {
   std::string poses_path;   // poses.json of localize
   std::string lasers_path;  // lasers.json
   std::string setup_name;   // empty: the only set-up
+  // The model's covariance folder (covariance_estimator with
+  // --Covariance.samples) and the model itself; empty: the model is taken
+  // as exact.
+  std::string covariance_path;
+  std::string input_path;
   // Its spots_path (--spots), overlays_dir and report_dir (--out).
   ImageScaleEstimationOptions images;
   CombineOptions combine;
 
-  void Check() const {
-    images.Check();
-    combine.Check();
-  }
+  void Check() const;
 };
 Subcommand EstimateCommand();
 

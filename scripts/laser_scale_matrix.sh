@@ -1,0 +1,117 @@
+#!/usr/bin/env bash
+# The laser scale's calibration matrix (issue 16, item 3): the whole chain
+# of scripts/compare_with_colmap.sh --laser_database on uwsim surveys of
+# several worlds and seeds, each rendered and reconstructed by stock colmap
+# from scratch (scripts/reconstruct_uwsim_survey.sh, add_laser_images.sh).
+# Per chain (stock colmap's model aligned to the navigation, and ours fused
+# with it): the laser scale s, its 95 % interval, the truth, the error
+# eps_s, whether the truth is inside, each source's share of the variance,
+# the z-score against the navigation, the dense mesh's accuracy and
+# coverage. A chain that fails says why in its row; the others go on.
+#
+#   laser_scale_matrix.sh OUT_DIR [WORLD:SEED ...]
+#
+# OUT_DIR     new or empty folder: one folder per WORLD_SEED, matrix.csv
+#             (every chain) and summary.txt (coverage and |eps_s| < 1 %)
+# WORLD:SEED  surveys (lawnmower with laser images); default: 4 seeds each
+#             of seafloor, vent, scarp, canyon and breakwater (20 surveys,
+#             40 chains, several hours on 2 cores)
+#
+# Environment: UWSIM (default build/bin/uwsim), MC (Monte Carlo iterations,
+# 5000), DRAWS (covariance draws, 200), and what compare_with_colmap.sh
+# reads. CTest runs it as laser_scale_matrix (label heavy,
+# scripts/bench.sh); bench/results/laser_scale_matrix.csv is a run of it.
+set -euo pipefail
+if [[ $# -lt 1 ]]; then
+  sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'
+  exit 2
+fi
+out=$1
+shift
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+uwsim=${UWSIM:-$root/build/bin/uwsim}
+mc=${MC:-5000}
+draws=${DRAWS:-200}
+surveys=("$@")
+if [[ ${#surveys[@]} -eq 0 ]]; then
+  for world in seafloor vent scarp canyon breakwater; do
+    for seed in 2 3 4 5; do surveys+=("$world:$seed"); done
+  done
+fi
+
+marker=".uwmetric-laser-scale-matrix"
+if [[ -e "$out" && -n "$(ls -A "$out" 2>/dev/null)" && ! -f "$out/$marker" ]]; then
+  echo "laser_scale_matrix: $out exists and was not made by this script;" \
+    "choose a new or empty folder" >&2
+  exit 1
+fi
+mkdir -p "$out"
+touch "$out/$marker"
+
+header="world,seed,method,laser_scale,ci95_low,ci95_high,true_scale,scale_error_percent,truth_in_ci95,accepted_images,laser_images,mesh_median_m,mesh_median_percent_of_range,mesh_coverage_percent,dense_s,laser_s,model_draws,features_share_percent,spots_share_percent,calibration_share_percent,model_share_percent,navigation_z,problem"
+echo "$header" > "$out/matrix.csv"
+n=0
+for survey in "${surveys[@]}"; do
+  world=${survey%%:*}
+  seed=${survey##*:}
+  dir="$out/${world}_$seed"
+  n=$((n + 1))
+  echo "[matrix $n/${#surveys[@]}] $world, seed $seed: $dir"
+  rm -rf "$dir"
+  mkdir -p "$dir"
+  problem=""
+  if ! bash "$root/scripts/reconstruct_uwsim_survey.sh" "$uwsim" "$dir/run" \
+      --world "$world" --survey lawnmower --seed "$seed" > "$dir/reconstruct.log" 2>&1; then
+    problem="reconstruction failed (see $dir/reconstruct.log)"
+  elif ! bash "$root/scripts/add_laser_images.sh" "$dir/run" "$dir/laser" \
+      > "$dir/add_laser_images.log" 2>&1; then
+    problem="adding the laser images failed (see $dir/add_laser_images.log)"
+  else
+    # The camera on the vehicle as uwsim mounted it (truth/sim.json).
+    read -r -a mount < <(python3 - "$dir/run/sim/truth/sim.json" <<'PY'
+import json, sys
+survey = json.load(open(sys.argv[1]))["survey_options"]
+triple = lambda key: ",".join("%.10g" % v for v in survey[key])
+print("--mount down --lever_arm %s --boresight %s"
+      % (triple("lever_arm_m"), triple("boresight_deg")))
+PY
+)
+    if ! bash "$root/scripts/compare_with_colmap.sh" "$dir/run/sim" \
+        "$dir/run/sparse/0" "$dir/compare" \
+        --laser_database "$dir/laser/database.db" --mc "$mc" \
+        --Covariance.samples "$draws" "${mount[@]}" > "$dir/compare.log" 2>&1; then
+      problem="the chain failed: $(tail -n 1 "$dir/compare.log")"
+    fi
+  fi
+  if [[ -z "$problem" ]]; then
+    tail -n +2 "$dir/compare/chain.csv" | sed "s/^/$world,$seed,/; s/\$/,/" \
+      >> "$out/matrix.csv"
+    tail -n 2 "$dir/compare.log" | sed 's/^/  /'
+  else
+    echo "  $problem"
+    echo "$world,$seed,,,,,,,,,,,,,,,,,,,,,\"${problem//\"/\'}\"" >> "$out/matrix.csv"
+  fi
+done
+
+python3 - "$out/matrix.csv" <<'PY' | tee "$out/summary.txt"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+done = [r for r in rows if not r["problem"]]
+failed = [r for r in rows if r["problem"]]
+print("Laser scale calibration matrix: %d chains, %d surveys failed" %
+      (len(done), len(failed)))
+for method in sorted({r["method"] for r in done}):
+    chains = [r for r in done if r["method"] == method]
+    inside = sum(r["truth_in_ci95"] == "1" for r in chains)
+    small = sum(abs(float(r["scale_error_percent"])) < 1.0 for r in chains)
+    print("  %s: truth inside the 95 %% interval in %d of %d (%.0f %%); "
+          "|eps_s| < 1 %% in %d of %d" % (method, inside, len(chains),
+          100.0 * inside / len(chains), small, len(chains)))
+for r in done:
+    print("  %-10s seed %-3s %-55.55s eps %+7.3f %%  %s  model share %5.1f %%" % (
+        r["world"], r["seed"], r["method"], float(r["scale_error_percent"]),
+        "inside " if r["truth_in_ci95"] == "1" else "OUTSIDE",
+        float(r["model_share_percent"])))
+for r in failed:
+    print("  %-10s seed %-3s %s" % (r["world"], r["seed"], r["problem"]))
+PY
