@@ -723,8 +723,10 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
           "The points in plan view (model x, y) in three classes of their "
           "largest-axis sigma against the median (grey: at most the median; "
           "orange: up to 3x; red: weak, above 3x), the cameras on top. Weak "
-          "points gather where few images overlap or their baselines are "
-          "short.");
+          "points gather where few images see them (the survey's edges) or "
+          "their baselines are short. Coverage gaps, places inside the "
+          "survey where the model has no point, are marked in magenta "
+          "(docs/covariance.md, \"Map\").");
     }
     report["uncertainty"] = uncertainty;
   } else {

@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 #include <opencv2/imgcodecs.hpp>
 
+#include "colmap_plugins/ba/coverage_gaps.h"
 #include "colmap_plugins/ba/model_file.h"
 #include "common/util/csv.h"
 #include "common/util/error.h"
@@ -109,8 +110,18 @@ void WritePointsPly(const BundleCovariance& covariance,
   }
 }
 
+// The points' coverage gaps in plan view (the map's view).
+CoverageGaps PlanViewGaps(const BundleCovariance& covariance,
+                          const Reconstruction& model) {
+  std::vector<Eigen::Vector2d> points;
+  for (const PointCovariance& point : covariance.points) {
+    points.push_back(model.FindPoint3D(point.point3D_id)->xyz.head<2>());
+  }
+  return FindCoverageGaps(points, CoverageGapOptions());
+}
+
 // Plan view: points in three classes of their largest-axis sigma against
-// the median, cameras on top.
+// the median, coverage gaps, cameras on top.
 std::string RenderMap(const BundleCovariance& covariance,
                       const Reconstruction& model) {
   std::vector<double> sigmas;
@@ -137,6 +148,16 @@ std::string RenderMap(const BundleCovariance& covariance,
                                  cv::Scalar(0, 0, 220)};
   for (int k = 0; k < 3; ++k) {
     if (!x[k].empty()) plot.Points(x[k], y[k], colours[k], labels[k]);
+  }
+  const CoverageGaps gaps = PlanViewGaps(covariance, model);
+  std::vector<double> gx;
+  std::vector<double> gy;
+  for (const Eigen::Vector2d& centre : gaps.cell_centres) {
+    gx.push_back(centre.x());
+    gy.push_back(centre.y());
+  }
+  if (!gx.empty()) {
+    plot.Points(gx, gy, cv::Scalar(200, 0, 200), "coverage gap (no points)");
   }
   std::vector<double> cx;
   std::vector<double> cy;
@@ -189,6 +210,13 @@ nlohmann::json CovarianceSummaryJson(const BundleCovariance& covariance,
                     {"inverse", covariance.inverse_time_s},
                     {"total", covariance.total_time_s}};
   json["warnings"] = covariance.warnings;
+  const CoverageGaps gaps = PlanViewGaps(covariance, model);
+  if (!gaps.cell_centres.empty()) {
+    json["warnings"].push_back(fmt::format(
+        "coverage gaps: {} cells of {:.2g} m ({:.3g} m^2) inside the survey "
+        "hold no point; see uncertainty_map.png",
+        gaps.cell_centres.size(), gaps.cell_size, gaps.Area()));
+  }
   json["model_fingerprint"] = fmt::format("{:016x}", ModelFingerprint(model));
   json["cameras"] = nlohmann::json::array();
   for (const CameraCovariance& camera : covariance.cameras) {
@@ -241,6 +269,17 @@ nlohmann::json CovarianceSummaryJson(const BundleCovariance& covariance,
       {"num_weak", std::count_if(sigmas.begin(), sigmas.end(),
                                  [&](double s) { return s > 3.0 * median; })},
       {"weak_rule", "largest-axis sigma > 3x the median"}};
+  nlohmann::json gap_cells = nlohmann::json::array();
+  for (const Eigen::Vector2d& centre : gaps.cell_centres) {
+    gap_cells.push_back({centre.x(), centre.y()});
+  }
+  json["points"]["coverage_gaps"] = {
+      {"cell_m", gaps.cell_size},
+      {"area_m2", gaps.Area()},
+      {"cells", gap_cells},
+      {"rule",
+       "plan-view cells of 4x the points' mean spacing with no point, "
+       "surrounded by occupied cells on all four sides"}};
   const CovarianceSamples& samples = covariance.samples;
   if (samples.NumSamples() > 0) {
     const double mean = samples.log_scale.mean();

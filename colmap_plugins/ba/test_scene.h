@@ -4,7 +4,9 @@
 // Everything is known, so tests compare against the truth directly.
 #pragma once
 
+#include <algorithm>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -25,6 +27,8 @@ struct TestSceneOptions {
   // a single line is not collinear.
   double wiggle_m = 0.0;
   int num_points = 1500;
+  // Images (line, index along the line) not taken: a coverage gap.
+  std::vector<std::pair<int, int>> missing_images;
   double pixel_sigma = 0.5;
   double nav_sigma_m = 0.3;
   // Attitude priors (world-frame rotation noise, rad); drawn from their own
@@ -74,8 +78,15 @@ inline TestScene MakeTestScene(const TestSceneOptions& options) {
   scene.truth.AddCamera(camera);
 
   image_t image_id = 1;
+  std::vector<int> line_of_image;  // by image_id - 1
   for (int line = 0; line < options.num_lines; ++line) {
     for (int k = 0; k < options.images_per_line; ++k) {
+      if (std::find(options.missing_images.begin(),
+                    options.missing_images.end(),
+                    std::make_pair(line, k)) != options.missing_images.end()) {
+        continue;
+      }
+      line_of_image.push_back(line);
       Image image;
       image.image_id = image_id++;
       image.camera_id = 1;
@@ -143,8 +154,7 @@ inline TestScene MakeTestScene(const TestSceneOptions& options) {
     }
   }
   for (const Image& image : scene.truth.Images()) {
-    const int line =
-        static_cast<int>(image.image_id - 1) / options.images_per_line;
+    const int line = line_of_image[image.image_id - 1];
     ImagePosePrior prior;
     prior.image_id = image.image_id;
     prior.dive = line >= options.first_line_of_dive_2 ? 2 : 1;
