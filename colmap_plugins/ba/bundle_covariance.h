@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include "colmap_plugins/ba/covariance_samples.h"
+#include "colmap_plugins/ba/coverage_gaps.h"
 #include "colmap_plugins/ba/nav_bundle_adjuster.h"
 #include "colmap_plugins/scene/model.h"
 
@@ -99,9 +100,12 @@ struct BundleCovariance {
   std::vector<ImagePairCovariance> covisible;
   // When num_samples > 0: the draws, their similarity removed.
   CovarianceSamples samples;
+  // Where the points leave a hole inside the survey (plan view, from the
+  // points' positions; coverage_gaps.h): no sigma can show it.
+  CoverageGaps coverage_gaps;
   // Where the linearised covariance is not to be trusted (printed, and in
   // covariance.json): a focal length whose sigma exceeds
-  // kPoorFocalLengthFraction of itself.
+  // kPoorFocalLengthFraction of itself; coverage gaps.
   std::vector<std::string> warnings;
   // From ComputeSchurCovariance.
   int num_residuals = 0;

@@ -9,7 +9,6 @@
 #include <Eigen/Eigenvalues>
 #include <opencv2/imgcodecs.hpp>
 
-#include "colmap_plugins/ba/coverage_gaps.h"
 #include "colmap_plugins/ba/model_file.h"
 #include "common/util/csv.h"
 #include "common/util/error.h"
@@ -110,16 +109,6 @@ void WritePointsPly(const BundleCovariance& covariance,
   }
 }
 
-// The points' coverage gaps in plan view (the map's view).
-CoverageGaps PlanViewGaps(const BundleCovariance& covariance,
-                          const Reconstruction& model) {
-  std::vector<Eigen::Vector2d> points;
-  for (const PointCovariance& point : covariance.points) {
-    points.push_back(model.FindPoint3D(point.point3D_id)->xyz.head<2>());
-  }
-  return FindCoverageGaps(points, CoverageGapOptions());
-}
-
 // Plan view: points in three classes of their largest-axis sigma against
 // the median, coverage gaps, cameras on top.
 std::string RenderMap(const BundleCovariance& covariance,
@@ -149,7 +138,7 @@ std::string RenderMap(const BundleCovariance& covariance,
   for (int k = 0; k < 3; ++k) {
     if (!x[k].empty()) plot.Points(x[k], y[k], colours[k], labels[k]);
   }
-  const CoverageGaps gaps = PlanViewGaps(covariance, model);
+  const CoverageGaps& gaps = covariance.coverage_gaps;
   std::vector<double> gx;
   std::vector<double> gy;
   for (const Eigen::Vector2d& centre : gaps.cell_centres) {
@@ -210,13 +199,7 @@ nlohmann::json CovarianceSummaryJson(const BundleCovariance& covariance,
                     {"inverse", covariance.inverse_time_s},
                     {"total", covariance.total_time_s}};
   json["warnings"] = covariance.warnings;
-  const CoverageGaps gaps = PlanViewGaps(covariance, model);
-  if (!gaps.cell_centres.empty()) {
-    json["warnings"].push_back(fmt::format(
-        "coverage gaps: {} cells of {:.2g} m ({:.3g} m^2) inside the survey "
-        "hold no point; see uncertainty_map.png",
-        gaps.cell_centres.size(), gaps.cell_size, gaps.Area()));
-  }
+  const CoverageGaps& gaps = covariance.coverage_gaps;
   json["model_fingerprint"] = fmt::format("{:016x}", ModelFingerprint(model));
   json["cameras"] = nlohmann::json::array();
   for (const CameraCovariance& camera : covariance.cameras) {

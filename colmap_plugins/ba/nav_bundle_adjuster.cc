@@ -8,6 +8,7 @@
 #include <thread>
 
 #include <ceres/ceres.h>
+#include <fmt/format.h>
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
@@ -1359,7 +1360,20 @@ BundleCovariance EstimateBundleCovariance(
     const Reconstruction& model, const BundleCovarianceOptions& options) {
   Reconstruction copy = model;
   Adjustment adjustment(adjuster, priors, rig, image_times, &copy);
-  return adjustment.Covariance(options);
+  BundleCovariance covariance = adjustment.Covariance(options);
+  std::vector<Eigen::Vector2d> points;
+  for (const PointCovariance& point : covariance.points) {
+    points.push_back(model.FindPoint3D(point.point3D_id)->xyz.head<2>());
+  }
+  covariance.coverage_gaps = FindCoverageGaps(points, CoverageGapOptions());
+  const CoverageGaps& gaps = covariance.coverage_gaps;
+  if (!gaps.cell_centres.empty()) {
+    covariance.warnings.push_back(fmt::format(
+        "coverage gaps: {} cells of {:.2g} m ({:.3g} m^2) inside the survey "
+        "hold no point; see uncertainty_map.png",
+        gaps.cell_centres.size(), gaps.cell_size, gaps.Area()));
+  }
+  return covariance;
 }
 
 }  // namespace uw
