@@ -122,11 +122,9 @@ nlohmann::json CombinedJson(const CombinedScale& c,
       {"images", names}};
   if (!c.source_sigmas.empty()) {
     nlohmann::json shares = nlohmann::json::object();
-    const double variance = c.monte_carlo.std_dev * c.monte_carlo.std_dev;
     for (const auto& [source, sigma] : c.source_sigmas) {
-      shares[ScaleSourceName(source)] = {
-          {"sigma", sigma},
-          {"share", variance > 0.0 ? sigma * sigma / variance : 0.0}};
+      shares[ScaleSourceName(source)] = {{"sigma", sigma},
+                                         {"share", c.VarianceShare(sigma)}};
     }
     json["variance_by_source"] = shares;
   }
@@ -149,6 +147,11 @@ std::string SummaryCsv(const SampleSummary& s) {
 }
 
 }  // namespace
+
+double CombinedScale::VarianceShare(double source_sigma) const {
+  const double variance = monte_carlo.std_dev * monte_carlo.std_dev;
+  return variance > 0.0 ? source_sigma * source_sigma / variance : 0.0;
+}
 
 std::optional<NavigationScaleCheck> CheckAgainstNavigation(
     const CombinedScale& scale, double log_scale_sigma) {
@@ -435,14 +438,10 @@ void WriteScaleReport(const ModelScaleReport& report,
               "source, is not in the interval.</p>\n";
     }
     if (!model.source_sigmas.empty()) {
-      const double variance =
-          model.monte_carlo.std_dev * model.monte_carlo.std_dev;
       html << "<p>Share of the variance, each source sampled alone:";
       for (const auto& [source, sigma] : model.source_sigmas) {
         html << " " << ScaleSourceName(source) << " "
-             << fmt::format("{:.0f}", variance > 0.0
-                                          ? 100.0 * sigma * sigma / variance
-                                          : 0.0)
+             << fmt::format("{:.0f}", 100.0 * model.VarianceShare(sigma))
              << " % (&sigma; " << Fixed(sigma) << ")";
       }
       html << ".</p>\n";

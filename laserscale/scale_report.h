@@ -46,6 +46,9 @@ struct CombinedScale {
   // variance is (σ_source / monte_carlo.std_dev)^2. The shares sum to 1
   // where the sources act linearly and independently.
   std::vector<std::pair<ScaleSource, double>> source_sigmas;
+
+  // (source_sigma / monte_carlo.std_dev)^2; 0 without any spread.
+  double VarianceShare(double source_sigma) const;
 };
 
 // How the laser scale agrees with the navigation's own scale of a fused

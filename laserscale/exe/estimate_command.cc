@@ -140,12 +140,10 @@ void RunEstimate(const EstimateOptions& options) {
       index.c_str());
   if (!model.source_sigmas.empty()) {
     std::string shares;
-    const double variance =
-        model.monte_carlo.std_dev * model.monte_carlo.std_dev;
     for (const auto& [source, sigma] : model.source_sigmas) {
-      shares += fmt::format(
-          "{}{} {:.0f} %", shares.empty() ? "" : ", ", ScaleSourceName(source),
-          variance > 0.0 ? 100.0 * sigma * sigma / variance : 0.0);
+      shares += fmt::format("{}{} {:.0f} %", shares.empty() ? "" : ", ",
+                            ScaleSourceName(source),
+                            100.0 * model.VarianceShare(sigma));
     }
     fmt::print("[estimate] share of the variance: {}\n", shares.c_str());
   }
