@@ -17,14 +17,20 @@
 #             of seafloor, vent, scarp, canyon and breakwater (20 surveys,
 #             40 chains, several hours on 2 cores)
 #
+# A survey folder holding rows.csv (its finished chains) from an earlier run
+# is kept, so a stopped matrix resumes where it stopped; delete the folder
+# to redo that survey.
+#
 # Exit 1 when a survey fails or a method's intervals cover the truth in
 # fewer than 90 % of its chains (issue 16, acceptance 3).
 #
-# Environment: UWSIM (default build/bin/uwsim), MC (Monte Carlo iterations,
-# 5000), DRAWS (covariance draws, 200), and what compare_with_colmap.sh
-# reads. CTest runs it as bench.laser_scale_matrix (label heavy,
-# scripts/bench.sh), which copies matrix.csv and summary.txt to
-# bench/results/laser_scale_matrix.{csv,txt}.
+# Environment: UWSIM (default build/bin/uwsim), UWCOLMAP (build/bin/uwcolmap),
+# MC (Monte Carlo iterations, 5000), DRAWS (covariance draws, 200), MATCHER
+# (spatial: each image matched with its 50 nearest by the navigation, as a
+# user with navigation would; exhaustive takes hours on the 270-image scarp
+# survey), and what compare_with_colmap.sh reads. CTest runs it as
+# bench.laser_scale_matrix (label heavy, scripts/bench.sh), which copies
+# matrix.csv and summary.txt to bench/results/laser_scale_matrix.{csv,txt}.
 set -euo pipefail
 if [[ $# -lt 1 ]]; then
   sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'
@@ -34,12 +40,17 @@ out=$1
 shift
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 uwsim=${UWSIM:-$root/build/bin/uwsim}
+export UWCOLMAP=${UWCOLMAP:-$root/build/bin/uwcolmap}
+export MATCHER=${MATCHER:-spatial}
 mc=${MC:-5000}
 draws=${DRAWS:-200}
 surveys=("$@")
 if [[ ${#surveys[@]} -eq 0 ]]; then
-  for world in seafloor vent scarp canyon breakwater; do
-    for seed in 2 3 4 5; do surveys+=("$world:$seed"); done
+  # Every world once before any twice: a stopped run still spans them.
+  for seed in 2 3 4 5; do
+    for world in seafloor vent scarp canyon breakwater; do
+      surveys+=("$world:$seed")
+    done
   done
 fi
 
@@ -61,6 +72,11 @@ for survey in "${surveys[@]}"; do
   dir="$out/${world}_$seed"
   n=$((n + 1))
   echo "[matrix $n/${#surveys[@]}] $world, seed $seed: $dir"
+  if [[ -f "$dir/rows.csv" ]]; then
+    echo "  kept from an earlier run (delete $dir to redo it)"
+    cat "$dir/rows.csv" >> "$out/matrix.csv"
+    continue
+  fi
   rm -rf "$dir"
   mkdir -p "$dir"
   problem=""
@@ -71,15 +87,7 @@ for survey in "${surveys[@]}"; do
       > "$dir/add_laser_images.log" 2>&1; then
     problem="adding the laser images failed (see $dir/add_laser_images.log)"
   else
-    # The camera on the vehicle as uwsim mounted it (truth/sim.json).
-    read -r -a mount < <(python3 - "$dir/run/sim/truth/sim.json" <<'PY'
-import json, sys
-survey = json.load(open(sys.argv[1]))["survey_options"]
-triple = lambda key: ",".join("%.10g" % v for v in survey[key])
-print("--mount down --lever_arm %s --boresight %s"
-      % (triple("lever_arm_m"), triple("boresight_deg")))
-PY
-)
+    read -r -a mount < "$dir/run/mount_flags.txt"
     if ! bash "$root/scripts/compare_with_colmap.sh" "$dir/run/sim" \
         "$dir/run/sparse/0" "$dir/compare" \
         --laser_database "$dir/laser/database.db" --mc "$mc" \
@@ -89,7 +97,9 @@ PY
   fi
   if [[ -z "$problem" ]]; then
     tail -n +2 "$dir/compare/chain.csv" | sed "s/^/$world,$seed,/; s/\$/,/" \
-      >> "$out/matrix.csv"
+      > "$dir/rows.csv.tmp"
+    mv "$dir/rows.csv.tmp" "$dir/rows.csv"
+    cat "$dir/rows.csv" >> "$out/matrix.csv"
     tail -n 2 "$dir/compare.log" | sed 's/^/  /'
   else
     echo "  $problem"

@@ -6,6 +6,13 @@
 #
 # OUTPUT_DIR/sim/      uwsim's output (images/, nav.csv, truth/)
 # OUTPUT_DIR/database.db, OUTPUT_DIR/sparse/N, OUTPUT_DIR/logs/
+# OUTPUT_DIR/mount_flags.txt  the camera on the vehicle as uwsim mounted it
+#                      (truth/sim.json), as uwcolmap flags: --mount
+#                      down|starboard --lever_arm X,Y,Z --boresight R,P,Y
+#
+# MATCHER=spatial (environment; default exhaustive) matches each image with
+# its nearest ones by the navigation (scripts/colmap_sparse.sh; UWCOLMAP is
+# the uwcolmap binary).
 set -euo pipefail
 uwsim=$1
 out=$2
@@ -25,6 +32,16 @@ touch "$out/$marker"
 start=$SECONDS
 "$uwsim" generate --out "$out/sim" "$@" | tail -n 1
 echo "[uwsim] generate: $((SECONDS - start)) s"
+python3 - "$out/sim/truth/sim.json" > "$out/mount_flags.txt" <<'PY'
+import json, sys
+sim = json.load(open(sys.argv[1]))
+survey = sim["survey_options"]
+triple = lambda key: ",".join("%.10g" % v for v in survey[key])
+print("--mount %s --lever_arm %s --boresight %s"
+      % (sim["truth"]["camera_mount"], triple("lever_arm_m"),
+         triple("boresight_deg")))
+PY
 # truth/cameras.txt: "1 MODEL WIDTH HEIGHT PARAMS..." after three comments.
 read -r _ model _ _ params < <(grep -v '^#' "$out/sim/truth/cameras.txt" | head -n 1)
-bash "$here/colmap_sparse.sh" "$out/sim/images" "$out" "$model" "${params// /,}"
+NAV="$out/sim/nav.csv" NAV_FLAGS="$(cat "$out/mount_flags.txt")" \
+  bash "$here/colmap_sparse.sh" "$out/sim/images" "$out" "$model" "${params// /,}"

@@ -188,10 +188,13 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
       {"images", shots_truth}};
 
   nlohmann::json sim_json = config;
-  sim_json["truth"] = {{"dive_biases_m", ToJson(summary.dive_biases)},
-                       {"num_images", all_images.size()},
-                       {"num_laser_images", shots.size()},
-                       {"num_triangles", summary.num_triangles}};
+  sim_json["truth"] = {
+      {"camera_mount", CameraMountName(SurveyCameraMount(world))},
+      {"visible_range_m", VisibleRange(config.render)},
+      {"dive_biases_m", ToJson(summary.dive_biases)},
+      {"num_images", all_images.size()},
+      {"num_laser_images", shots.size()},
+      {"num_triangles", summary.num_triangles}};
   WriteModel(TrueModel(cameras, images), out / "truth", ModelFormat::kText);
   WritePly(world.mesh, out / "truth" / "mesh.ply");
   std::vector<PendingFile> files = {

@@ -503,6 +503,28 @@ class ToneCurve {
   bool srgb_;
 };
 
+// Levels above the veil that a grey surface at `range` adds, best channel.
+double SurfaceContrastLevels(const RenderOptions& options, double albedo,
+                             double range) {
+  const ToneCurve encode(options.sensor.srgb);
+  const Eigen::Vector3d transmission =
+      Exp(-range * options.water.attenuation_per_m);
+  const Eigen::Vector3d veil = options.water.backscatter_strength *
+                               options.water.backscatter_rgb.cwiseProduct(
+                                   Eigen::Vector3d::Ones() - transmission);
+  // Lamp to surface and back: twice the range through the water.
+  const Eigen::Vector3d reflected = albedo * options.light.intensity /
+                                    (range * range) *
+                                    transmission.cwiseProduct(transmission);
+  double best = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double gain = options.sensor.gain;
+    best = std::max(best, encode.Levels(gain * (veil(c) + reflected(c))) -
+                              encode.Levels(gain * veil(c)));
+  }
+  return best;
+}
+
 uint8_t Quantise(double level) {
   return static_cast<uint8_t>(std::clamp(std::floor(level + 0.5), 0.0, 255.0));
 }
@@ -826,6 +848,30 @@ RenderedImage RenderImage(const RayCaster& caster, const Texture& texture,
                           const FrameOptions& frame_options) {
   return Renderer(caster, texture, camera, options)
       .Render(cam_from_world, seed, image_index, frame_options);
+}
+
+double VisibleRange(const RenderOptions& options, double albedo) {
+  options.Check();
+  if (!(albedo > 0.0 && albedo <= 1.0)) {
+    throw ErrorAt("visible range: albedo = ", albedo, " must be in (0, 1]");
+  }
+  const double threshold = std::max(1.0, 3.0 * options.sensor.noise_sigma);
+  // The contrast falls with range (less light, more veil, a concave tone
+  // curve): bisect where it crosses the threshold.
+  double near = 0.05;
+  double far = 10000.0;
+  if (SurfaceContrastLevels(options, albedo, near) < threshold) {
+    throw ErrorAt("visible range: a surface 5 cm from the lamp is not seen (",
+                  SurfaceContrastLevels(options, albedo, near),
+                  " levels above the veil, ", threshold, " needed)");
+  }
+  if (SurfaceContrastLevels(options, albedo, far) >= threshold) return far;
+  for (int k = 0; k < 100 && far - near > 1e-6 * far; ++k) {
+    const double middle = 0.5 * (near + far);
+    (SurfaceContrastLevels(options, albedo, middle) >= threshold ? near : far) =
+        middle;
+  }
+  return 0.5 * (near + far);
 }
 
 }  // namespace uw::sim

@@ -163,6 +163,18 @@ class Renderer {
   Eigen::Vector2d max_abs_centre_ray_ = Eigen::Vector2d::Zero();
 };
 
+// How far the camera sees a surface through the water: the range at which
+// the light a grey surface (albedo `albedo`, 18 % by default: a grey card)
+// on the lamp's axis reflects lifts the image above the veil of the same
+// range by 3 noise sigmas (8-bit levels after the tone curve; 1 level
+// without noise), on the best channel. Beyond it the surface's texture is
+// lost in the noise: nothing can be matched or reconstructed there, so the
+// coverage of a reconstruction is measured within it (model_comparer reads
+// it from truth/sim.json). The lamp is taken at the lens, facing the
+// surface (its 0.3 m default offset moves the range by well under 1 %).
+// Throws uw::Error when even 5 cm away the surface is not seen.
+double VisibleRange(const RenderOptions& options, double albedo = 0.18);
+
 // One image with a Renderer made for it. A survey should keep a Renderer per
 // camera instead: at 1024x768 and supersampling 2 its set-up takes ~0.15 CPU
 // s for PINHOLE and ~2 CPU s for distorted models, more than an image.

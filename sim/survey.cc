@@ -198,9 +198,13 @@ void from_json(const nlohmann::json& json, SurveyOptions& options) {
   fields.RejectUnknown();
 }
 
+CameraMount SurveyCameraMount(const World& world) {
+  return MountOf(IsWallSurvey(world));
+}
+
 Rigid3d VehicleFromCam(const World& world, const SurveyOptions& options) {
   NavToCameraOptions camera;
-  camera.mount = MountOf(IsWallSurvey(world));
+  camera.mount = SurveyCameraMount(world);
   camera.lever_arm_m = options.lever_arm_m;
   camera.boresight_deg = options.boresight_deg;
   return uw::VehicleFromCam(camera);

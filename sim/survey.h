@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/nav/attitude.h"
+#include "colmap_plugins/nav/camera_mount.h"
 #include "colmap_plugins/scene/model.h"
 
 namespace uw::sim {
@@ -127,6 +128,9 @@ using uw::WorldFromVehicleRotation;
 // ~45°), with the lever arm and boresight of `options`
 // (colmap_plugins/nav/camera_mount.h).
 Rigid3d VehicleFromCam(const World& world, const SurveyOptions& options);
+// That nominal mount alone (truth/sim.json's truth.camera_mount, so that
+// scripts import the log as uwsim mounted the camera).
+CameraMount SurveyCameraMount(const World& world);
 
 // Plans the stations of a survey of `world` seen through `camera`. The
 // image footprint, and so the spacing, follows from the camera's focal

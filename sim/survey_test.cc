@@ -254,6 +254,25 @@ TEST(Survey, CameraSitsOnTheVehicleAsMounted) {
   }
 }
 
+// What truth/sim.json tells the importer: a floor is imaged down, a wall
+// to starboard; the mount's rotation is the one the stations carry.
+TEST(Survey, CameraMountIsDownOverAFloorAndStarboardAtAWall) {
+  const World floor =
+      MeshPlaneWorld(Eigen::Vector3d(5.0, -3.0, 0.2), Eigen::Vector3d::UnitZ());
+  const World wall = PlaneWorld(-Eigen::Vector3d::UnitY(),
+                                Eigen::Vector3d::UnitX(), 300.0, 10.0);
+  EXPECT_EQ(SurveyCameraMount(floor), CameraMount::kDown);
+  EXPECT_EQ(SurveyCameraMount(wall), CameraMount::kStarboard);
+  SurveyOptions options = NoJitter();
+  options.boresight_deg.setZero();
+  for (const World* world : {&floor, &wall}) {
+    EXPECT_LT((VehicleFromCam(*world, options).RotationMatrix() -
+               NominalVehicleFromCamRotation(SurveyCameraMount(*world)))
+                  .norm(),
+              1e-12);
+  }
+}
+
 TEST(Survey, JitterHasTheConfiguredSpreadAndIsSeeded) {
   const World world = PlaneWorld(Eigen::Vector3d::UnitZ(),
                                  Eigen::Vector3d::UnitX(), 60.0, 40.0);

@@ -22,6 +22,12 @@ void MeshComparisonOptions::Check() const {
   if (min_views < 1) {
     throw ErrorAt("MeshComparison.min_views must be >= 1, got ", min_views);
   }
+  if (!(max_range_m >= 0.0) || !std::isfinite(max_range_m)) {
+    throw ErrorAt(
+        "MeshComparison.max_range_m must be >= 0 (0: any range), "
+        "got ",
+        max_range_m);
+  }
   if (!(coverage_tolerance > 0.0)) {
     throw ErrorAt("MeshComparison.coverage_tolerance must be > 0, got ",
                   coverage_tolerance);
@@ -85,6 +91,7 @@ MeshComparison CompareMeshes(const TriangleMesh& mesh,
   result.coverage_tolerance =
       options.coverage_tolerance * result.camera_scene_distance;
   result.min_views = options.min_views;
+  result.max_range_m = options.max_range_m;
 
   // Accuracy: area-uniform samples on the reconstruction, drawn in order
   // from one seeded stream so that they do not depend on threads.
@@ -146,12 +153,19 @@ MeshComparison CompareMeshes(const TriangleMesh& mesh,
   const size_t num_true = reference_mesh.triangles.size();
   std::vector<double> observed(num_true, 0.0);
   std::vector<double> covered(num_true, 0.0);
+  std::vector<Eigen::Vector3d> image_centres;
+  for (const Image& image : reference.Images()) {
+    image_centres.push_back(image.ProjectionCenter());
+  }
   tbb::parallel_for(size_t{0}, num_true, [&](size_t t) {
     const Eigen::Vector3d centroid = Centroid(reference_mesh, t);
-    if (static_cast<int>(visibility.Observe(centroid).size()) <
-        options.min_views) {
-      return;
+    int views = 0;
+    for (const SurfaceObservation& seen : visibility.Observe(centroid)) {
+      views +=
+          options.max_range_m <= 0.0 ||
+          (image_centres[seen.view] - centroid).norm() <= options.max_range_m;
     }
+    if (views < options.min_views) return;
     observed[t] = TriangleArea(reference_mesh, t);
     if (reconstructed.Query(centroid).distance <= result.coverage_tolerance) {
       covered[t] = observed[t];
@@ -189,7 +203,8 @@ nlohmann::json ToJson(const MeshComparison& comparison) {
           {"covered_area", comparison.covered_area},
           {"coverage", comparison.coverage},
           {"coverage_tolerance", comparison.coverage_tolerance},
-          {"coverage_min_views", comparison.min_views}};
+          {"coverage_min_views", comparison.min_views},
+          {"coverage_max_range", comparison.max_range_m}};
 }
 
 std::string FormatMeshComparison(const MeshComparison& comparison,
@@ -201,13 +216,18 @@ std::string FormatMeshComparison(const MeshComparison& comparison,
       "({:.3f} % of the camera-scene distance), 90 % {:.6g} m, RMS {:.6g} m, "
       "signed mean {:.6g} m\n"
       "  coverage: {:.2f} % of the {:.6g} m^2 seen by >= {} reference images "
-      "lie within {:.4g} m of the dense surface\n",
+      "{}lie within {:.4g} m of the dense surface\n",
       mesh_path, comparison.camera_scene_distance, comparison.num_samples,
       comparison.median,
       100.0 * comparison.median / comparison.camera_scene_distance,
       comparison.p90, comparison.rms, comparison.mean_signed,
       100.0 * comparison.coverage, comparison.observed_area,
-      comparison.min_views, comparison.coverage_tolerance);
+      comparison.min_views,
+      comparison.max_range_m > 0.0
+          ? fmt::format("within {:.3g} m (what the water lets them see) ",
+                        comparison.max_range_m)
+          : std::string(),
+      comparison.coverage_tolerance);
 }
 
 }  // namespace uw

@@ -25,6 +25,10 @@ struct MeshComparisonOptions {
   // ...and covered when its centroid lies within this fraction of the
   // camera-scene distance of the reconstructed mesh.
   double coverage_tolerance = 0.01;
+  // An image sees a true triangle only within this range (m) of its centre:
+  // how far the water lets it see (uwsim states it in truth/sim.json,
+  // truth.visible_range_m). 0: any range.
+  double max_range_m = 0.0;
 
   void Check() const;  // throws uw::Error naming the bad field
 };
@@ -46,6 +50,7 @@ struct MeshComparison {
   double coverage = 0.0;            // covered / observed
   double coverage_tolerance = 0.0;  // absolute
   int min_views = 0;                // as in the options
+  double max_range_m = 0.0;         // as in the options
 };
 
 // `mesh` must already be in the reference's frame (see TransformMesh).

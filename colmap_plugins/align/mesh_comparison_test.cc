@@ -91,7 +91,7 @@ Eigen::Vector3d Centroid(const TriangleMesh& mesh, size_t t) {
 // the survey see: inside the image by a pinhole projection of our own (the
 // seafloor is flat, so nothing occludes).
 double ObservedArea(const TriangleMesh& mesh, const Reconstruction& survey,
-                    int min_views) {
+                    int min_views, double max_range = 0.0) {
   const Camera& camera = survey.Cameras()[0];
   double area = 0.0;
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -104,7 +104,8 @@ double ObservedArea(const TriangleMesh& mesh, const Reconstruction& survey,
       const double y = camera.params[1] * point_in_cam.y() / point_in_cam.z() +
                        camera.params[3];
       views += point_in_cam.z() > 0 && x >= 0 && y >= 0 && x < camera.width &&
-               y < camera.height;
+               y < camera.height &&
+               (max_range <= 0.0 || point_in_cam.norm() <= max_range);
     }
     if (views >= min_views) {
       area += Area(mesh, t);
@@ -215,6 +216,32 @@ TEST(CompareMeshes, MinViewsSetsTheObservedSurface) {
               std::string::npos)
         << error.what();
   }
+}
+
+// What the water lets the images see: within 8.5 m of a camera 8 m up, a
+// disc of radius 2.87 m under it; seen twice, only where two discs overlap.
+TEST(CompareMeshes, MaxRangeLimitsTheObservedSurface) {
+  const TriangleMesh seafloor = Seafloor();
+  MeshComparisonOptions options = Options();
+  options.max_range_m = 8.5;
+  const MeshComparison near =
+      CompareMeshes(seafloor, seafloor, Survey(), options);
+  const double expected = ObservedArea(seafloor, Survey(), 2, 8.5);
+  EXPECT_GT(expected, 1.0);
+  EXPECT_LT(expected, 0.5 * kObservedArea);
+  EXPECT_NEAR(near.observed_area, expected, 1e-9);
+  EXPECT_DOUBLE_EQ(near.coverage, 1.0);
+  EXPECT_EQ(ToJson(near).at("coverage_max_range").get<double>(), 8.5);
+  EXPECT_NE(FormatMeshComparison(near, "mesh.ply")
+                .find("within 8.5 m (what the water lets them see)"),
+            std::string::npos);
+  // Nearer than the floor: nothing is seen.
+  options.max_range_m = 7.9;
+  ExpectErrorContaining(
+      [&] { CompareMeshes(seafloor, seafloor, Survey(), options); },
+      "seen by 2 reference images");
+  options.max_range_m = -1.0;
+  ExpectErrorContaining([&] { options.Check(); }, "max_range_m");
 }
 
 TEST(CompareMeshes, CameraSceneDistanceRunsAlongTheOpticalAxis) {

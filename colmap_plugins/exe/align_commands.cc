@@ -115,6 +115,10 @@ void AddModelComparerFlags(CommandLine* cli, ModelComparerOptions* options) {
   cli->Add("--dense_min_views", &options->dense.min_views,
            "Reference images that must see a true triangle for it to count "
            "as observed (coverage)");
+  cli->Add("--dense_max_range", &options->dense_max_range_m,
+           "...and within this range (m) of them: how far the water lets "
+           "them see; -1: with --truth_dir, the visible range uwsim states "
+           "in truth/sim.json; 0: any range");
   ModelComparisonOptions& comparison = options->comparison;
   cli->Add("--segments", &comparison.num_segments,
            "Segments along the track for the per-segment scale");
@@ -156,7 +160,7 @@ void RunModelComparer(const ModelComparerOptions& options) {
   if (!options.dense_mesh_path.empty()) {
     dense = CompareMeshes(TransformMesh(comparison.alignment.b_from_a,
                                         ReadMesh(options.dense_mesh_path)),
-                          reference_mesh, reference, options.dense);
+                          reference_mesh, reference, options.Dense());
     fmt::print("{}", FormatMeshComparison(*dense, options.dense_mesh_path));
   }
   if (options.output_path.empty()) return;
@@ -204,6 +208,22 @@ fs::path ModelComparerOptions::ReferencePath() const {
 std::string ModelComparerOptions::SurfacePath() const {
   if (!mesh_path.empty() || truth_dir.empty()) return mesh_path;
   return (fs::path(truth_dir) / "truth" / "mesh.ply").string();
+}
+
+MeshComparisonOptions ModelComparerOptions::Dense() const {
+  MeshComparisonOptions options = dense;
+  options.max_range_m = std::max(0.0, dense_max_range_m);
+  const fs::path sim_json = fs::path(truth_dir) / "truth" / "sim.json";
+  if (dense_max_range_m < 0.0 && !truth_dir.empty() &&
+      fs::is_regular_file(sim_json)) {
+    const nlohmann::json sim =
+        nlohmann::json::parse(ReadFileToString(sim_json));
+    // Folders from before uwsim stated it have none: any range.
+    if (sim.contains("truth") && sim["truth"].contains("visible_range_m")) {
+      options.max_range_m = sim["truth"]["visible_range_m"].get<double>();
+    }
+  }
+  return options;
 }
 
 ModelComparisonOptions ModelComparerOptions::Comparison() const {

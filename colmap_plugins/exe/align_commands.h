@@ -49,8 +49,14 @@ struct ModelComparerOptions {
   // align and alignment.estimate_scale follow `alignment` (Comparison()).
   ModelComparisonOptions comparison;
   MeshComparisonOptions dense;
+  // Range within which an image sees the truth (dense.max_range_m): < 0,
+  // uwsim's visible range from --truth_dir's truth/sim.json when it states
+  // one, else any range; 0: any range.
+  double dense_max_range_m = -1.0;
 
   std::filesystem::path ReferencePath() const;
+  // `dense` with the range resolved.
+  MeshComparisonOptions Dense() const;
   // The reference surface: --mesh_path, else truth/mesh.ply of --truth_dir;
   // empty without either.
   std::string SurfacePath() const;
