@@ -11,18 +11,10 @@
 // and the iterations. Writes a JSON record for bench/results/.
 //
 //   ba_speed_bench OUT.json --model DIR --uwcolmap PATH [--repetitions N]
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <regex>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -30,102 +22,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/bundle_adjuster_runs.h"
 #include "bench/perturbed_model.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/file.h"
-
-extern char** environ;
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct ProcessTimes {
-  double wall_s = 0.0;
-  double cpu_s = 0.0;  // user + system of the process and its threads
-};
-
-// Runs argv with stdout and stderr into `log`; throws when it fails.
-ProcessTimes RunTimed(const std::vector<std::string>& argv,
-                      const fs::path& log) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  std::vector<char*> args;
-  for (const std::string& arg : argv)
-    args.push_back(const_cast<char*>(arg.c_str()));
-  args.push_back(nullptr);
-  const auto start = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  const int error =
-      posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0) throw std::runtime_error("cannot start " + argv[0]);
-  int status = 0;
-  rusage usage{};
-  wait4(pid, &status, 0, &usage);
-  ProcessTimes times;
-  times.wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-          .count();
-  times.cpu_s = usage.ru_utime.tv_sec + 1e-6 * usage.ru_utime.tv_usec +
-                usage.ru_stime.tv_sec + 1e-6 * usage.ru_stime.tv_usec;
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    throw std::runtime_error(argv[0] + " failed; see " + log.string());
-  }
-  return times;
-}
-
-struct Run {
-  ProcessTimes process;
-  double solve_s = 0.0;
-  int iterations = 0;
-};
-
-std::string ReadText(const fs::path& path) {
-  std::ifstream stream(path);
-  std::ostringstream text;
-  text << stream.rdbuf();
-  return text.str();
-}
-
-// colmap's "Bundle adjustment report": "Iterations : N", "Time : S [s]".
-Run ColmapRun(const fs::path& input, const fs::path& dir) {
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  Run run;
-  run.process = RunTimed({"colmap", "bundle_adjuster", "--input_path",
-                          input.string(), "--output_path", dir.string()},
-                         dir / "log.txt");
-  const std::string log = ReadText(dir / "log.txt");
-  std::smatch match;
-  if (!std::regex_search(
-          log, match,
-          std::regex(R"(Iterations : (\d+)\s+Time : ([0-9.e+-]+))"))) {
-    throw std::runtime_error("no report in " + (dir / "log.txt").string());
-  }
-  run.iterations = std::stoi(match[1]);
-  run.solve_s = std::stod(match[2]);
-  return run;
-}
-
-Run OursRun(const std::string& uwcolmap, const fs::path& input,
-            const fs::path& dir, int threads) {
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  Run run;
-  run.process = RunTimed(
-      {uwcolmap, "bundle_adjuster", "--input_path", input.string(),
-       "--output_path", dir.string(), "--num_threads", std::to_string(threads)},
-      dir / "log.txt");
-  const nlohmann::json report =
-      nlohmann::json::parse(ReadText(dir / "ba_report.json"));
-  run.iterations = report.at("iterations").get<int>();
-  run.solve_s = report.at("solve_time_s").get<double>();
-  return run;
-}
+using uw::bench::ColmapRun;
+using uw::bench::OursRun;
+using uw::bench::Run;
 
 double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());

@@ -112,12 +112,57 @@ TEST(CovarianceEstimator, HeldGaugeOnStockColmapsModel) {
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json json = ReadJson(out / "covariance.json");
   EXPECT_EQ(json.at("gauge"), "held");
+  EXPECT_EQ(json.at("method"), "schur");
   // Without priors the draws' scale is the gauge's, and says so.
   EXPECT_NE(json.at("samples")
                 .at("log_scale_meaning")
                 .get<std::string>()
                 .find("not a measurement"),
             std::string::npos);
+  // A lawnmower at 75 % / 50 % overlap: no hole, no short baseline.
+  EXPECT_TRUE(json.at("points").at("coverage_gaps").at("cells").empty());
+  EXPECT_TRUE(json.at("points").at("short_baselines").at("cells").empty())
+      << json.at("points").at("short_baselines").dump();
+}
+
+// --Covariance.method ceres_sparse_qr (the benchmark's peer) on stock
+// colmap's model: the same camera marginals as ours.
+TEST(CovarianceEstimator, CeresMethodAgreesOnStockColmapsModel) {
+  const fs::path dir = FreshTestDir("uw_covariance_estimator_ceres");
+  for (const char* method : {"schur", "ceres_sparse_qr"}) {
+    const auto result = RunProcess(
+        Quoted(kUwcolmap) + " covariance_estimator --input_path " +
+            Quoted(kSparseDir) + " --output_path " + Quoted(dir / method) +
+            " --Covariance.gauge held --Covariance.points 0" +
+            " --Covariance.method " + method,
+        true);
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+  }
+  const nlohmann::json ours = ReadJson(dir / "schur" / "covariance.json");
+  const nlohmann::json ceres =
+      ReadJson(dir / "ceres_sparse_qr" / "covariance.json");
+  EXPECT_EQ(ceres.at("method"), "ceres_sparse_qr");
+  std::cout << "[ figures ] stock colmap's model: schur "
+            << ours.at("time_s").at("total") << " s, ceres_sparse_qr "
+            << ceres.at("time_s").at("total") << " s\n";
+  for (const char* sigma : {"sigma_position_m", "sigma_rotation_deg"}) {
+    for (const char* statistic : {"median", "max"}) {
+      const double a = ours.at("images").at(sigma).at(statistic).get<double>();
+      const double b = ceres.at("images").at(sigma).at(statistic).get<double>();
+      EXPECT_NEAR(a, b, 1e-6 * b) << sigma << " " << statistic;
+    }
+  }
+  // Draws need the Schur route's factor.
+  const auto refused = RunProcess(
+      Quoted(kUwcolmap) + " covariance_estimator --input_path " +
+          Quoted(kSparseDir) + " --output_path " + Quoted(dir / "refused") +
+          " --Covariance.gauge held --Covariance.method ceres_sparse_qr" +
+          " --Covariance.samples 10",
+      true);
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.output.find("marginals only"), std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(fs::exists(dir / "refused"));
 }
 
 TEST(CovarianceEstimator, RefusesAGaugeItCannotHaveAndWritesNothing) {

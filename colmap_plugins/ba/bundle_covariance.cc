@@ -26,6 +26,23 @@ CovarianceGauge CovarianceGaugeFromName(const std::string& name) {
                 "' (priors, held or free_network)");
 }
 
+std::string CovarianceMethodName(CovarianceMethod method) {
+  switch (method) {
+    case CovarianceMethod::kSchur:
+      return "schur";
+    case CovarianceMethod::kCeresSparseQr:
+      return "ceres_sparse_qr";
+  }
+  return "?";
+}
+
+CovarianceMethod CovarianceMethodFromName(const std::string& name) {
+  if (name == "schur") return CovarianceMethod::kSchur;
+  if (name == "ceres_sparse_qr") return CovarianceMethod::kCeresSparseQr;
+  throw ErrorAt("unknown covariance method '", name,
+                "' (schur or ceres_sparse_qr)");
+}
+
 void BundleCovarianceOptions::Check() const {
   if (!(std::isfinite(pixel_sigma_px) && pixel_sigma_px >= 0.0)) {
     throw ErrorAt("the pixel sigma (", pixel_sigma_px,
@@ -33,6 +50,20 @@ void BundleCovarianceOptions::Check() const {
   }
   if (num_samples < 0) {
     throw ErrorAt("the number of samples (", num_samples, ") must be >= 0");
+  }
+  if (method == CovarianceMethod::kCeresSparseQr) {
+    // ceres::Covariance takes no null-space basis and gives no joint draws;
+    // the co-visible blocks would be requested pair by pair.
+    if (gauge == CovarianceGauge::kFreeNetwork) {
+      throw ErrorAt(
+          "the covariance method ceres_sparse_qr cannot give the "
+          "free network (use schur)");
+    }
+    if (covisible_cross || num_samples > 0) {
+      throw ErrorAt(
+          "the covariance method ceres_sparse_qr gives marginals "
+          "only: no co-visible blocks or samples (use schur)");
+    }
   }
 }
 

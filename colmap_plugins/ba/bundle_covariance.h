@@ -17,6 +17,7 @@
 #include "colmap_plugins/ba/covariance_samples.h"
 #include "colmap_plugins/ba/coverage_gaps.h"
 #include "colmap_plugins/ba/nav_bundle_adjuster.h"
+#include "colmap_plugins/ba/short_baselines.h"
 #include "colmap_plugins/scene/model.h"
 
 namespace uw {
@@ -35,8 +36,20 @@ std::string CovarianceGaugeName(CovarianceGauge gauge);  // priors, held,
                                                          // free_network
 CovarianceGauge CovarianceGaugeFromName(const std::string& name);
 
+// Who computes the marginals of the same problem.
+enum class CovarianceMethod {
+  kSchur,          // ours: Schur complement, one Cholesky, sparse inverse
+  kCeresSparseQr,  // ceres::Covariance with SPARSE_QR: the peer it is
+                   // timed against (bench/covariance_speed_bench.cc); no
+                   // free network, co-visible blocks or draws
+};
+std::string CovarianceMethodName(CovarianceMethod method);  // schur,
+                                                            // ceres_sparse_qr
+CovarianceMethod CovarianceMethodFromName(const std::string& name);
+
 struct BundleCovarianceOptions {
   CovarianceGauge gauge = CovarianceGauge::kPriors;
+  CovarianceMethod method = CovarianceMethod::kSchur;
   // Pixel noise (px per coordinate); 0: estimated from the reprojection
   // residuals with the images' redundancy (2M - 3P - 6I - K + gauge).
   double pixel_sigma_px = 0.0;
@@ -89,6 +102,7 @@ struct ImagePairCovariance {
 
 struct BundleCovariance {
   CovarianceGauge gauge = CovarianceGauge::kPriors;
+  CovarianceMethod method = CovarianceMethod::kSchur;
   std::string gauge_description;
   double pixel_sigma_px = 0.0;
   std::string pixel_sigma_source;
@@ -103,9 +117,12 @@ struct BundleCovariance {
   // Where the points leave a hole inside the survey (plan view, from the
   // points' positions; coverage_gaps.h): no sigma can show it.
   CoverageGaps coverage_gaps;
+  // Where every image that sees the points was taken from nearly the same
+  // place (short_baselines.h): their depth is weak for that reason.
+  ShortBaselines short_baselines;
   // Where the linearised covariance is not to be trusted (printed, and in
   // covariance.json): a focal length whose sigma exceeds
-  // kPoorFocalLengthFraction of itself; coverage gaps.
+  // kPoorFocalLengthFraction of itself; coverage gaps; short baselines.
   std::vector<std::string> warnings;
   // From ComputeSchurCovariance.
   int num_residuals = 0;

@@ -148,6 +148,17 @@ std::string RenderMap(const BundleCovariance& covariance,
   if (!gx.empty()) {
     plot.Points(gx, gy, cv::Scalar(200, 0, 200), "coverage gap (no points)");
   }
+  std::vector<double> sx;
+  std::vector<double> sy;
+  for (const Eigen::Vector2d& centre :
+       covariance.short_baselines.cell_centres) {
+    sx.push_back(centre.x());
+    sy.push_back(centre.y());
+  }
+  if (!sx.empty()) {
+    plot.Points(sx, sy, cv::Scalar(200, 200, 0),
+                "short baselines (seen from one place)");
+  }
   std::vector<double> cx;
   std::vector<double> cy;
   for (const ImageCovariance& image : covariance.images) {
@@ -184,6 +195,7 @@ nlohmann::json CovarianceSummaryJson(const BundleCovariance& covariance,
   json["version"] = 1;
   json["gauge"] = CovarianceGaugeName(covariance.gauge);
   json["gauge_description"] = covariance.gauge_description;
+  json["method"] = CovarianceMethodName(covariance.method);
   json["pixel_sigma_px"] = covariance.pixel_sigma_px;
   json["pixel_sigma_source"] = covariance.pixel_sigma_source;
   json["num_images"] = covariance.images.size();
@@ -263,6 +275,25 @@ nlohmann::json CovarianceSummaryJson(const BundleCovariance& covariance,
       {"rule",
        "plan-view cells of 4x the points' mean spacing with no point, "
        "surrounded by occupied cells on all four sides"}};
+  const ShortBaselines& short_baselines = covariance.short_baselines;
+  nlohmann::json short_cells = nlohmann::json::array();
+  for (size_t k = 0; k < short_baselines.cell_centres.size(); ++k) {
+    short_cells.push_back({short_baselines.cell_centres[k].x(),
+                           short_baselines.cell_centres[k].y(),
+                           short_baselines.cell_median_angle_deg[k]});
+  }
+  json["points"]["short_baselines"] = {
+      {"cell_m", short_baselines.cell_size},
+      {"area_m2", short_baselines.Area()},
+      {"cells", short_cells},
+      {"rule",
+       fmt::format("plan-view cells of {:g}x the points' mean spacing whose "
+                   "points' median triangulation angle (widest pair of rays) "
+                   "is below {:g} deg, at least {} cells together; cells as "
+                   "x, y, median angle (deg)",
+                   ShortBaselineOptions().cell_factor,
+                   ShortBaselineOptions().min_angle_deg,
+                   ShortBaselineOptions().min_cells)}};
   const CovarianceSamples& samples = covariance.samples;
   if (samples.NumSamples() > 0) {
     const double mean = samples.log_scale.mean();

@@ -123,6 +123,8 @@ TEST(CovarianceFilesGaps, AStretchOfALineNotTakenIsFlaggedThere) {
         nlohmann::json::parse(ReadFileToString(folder / "covariance.json"));
     const nlohmann::json& gaps = json.at("points").at("coverage_gaps");
     const std::string warnings = json.at("warnings").dump();
+    // The hole's edges are seen along the lines, over wide baselines.
+    EXPECT_EQ(warnings.find("short baselines"), std::string::npos) << warnings;
     if (!gap) {
       EXPECT_TRUE(gaps.at("cells").empty()) << gaps.dump();
       EXPECT_EQ(warnings.find("coverage gaps"), std::string::npos);
@@ -142,6 +144,49 @@ TEST(CovarianceFilesGaps, AStretchOfALineNotTakenIsFlaggedThere) {
     }
     EXPECT_GT(gaps.at("area_m2").get<double>(), 0.5);
     EXPECT_NE(warnings.find("coverage gaps"), std::string::npos) << warnings;
+  }
+}
+
+// Issue 16, acceptance 5 (its short-baseline half): one pass at 0.6 m
+// spacing, 3 m up; the vehicle hovers at station 5 (x = 3 m: four images
+// within ~0.1 m) and stations 2-4 and 6-8 are missing, so the floor at x
+// ~2.5-3.5 m is seen from the hover alone, over < 4 deg. covariance.json,
+// its warnings and the map mark it there; the plain pass has none.
+TEST(CovarianceFilesShortBaselines, AHoverIsFlaggedThere) {
+  for (const bool hover : {false, true}) {
+    test::TestSceneOptions options;
+    options.num_lines = 1;
+    options.images_per_line = 12;
+    options.num_points = 1500;
+    if (hover) {
+      options.missing_images = {{0, 2}, {0, 3}, {0, 4}, {0, 6}, {0, 7}, {0, 8}};
+      options.hovers = {{0, 5, 4, 0.03}};
+    }
+    const test::TestScene scene = test::MakeTestScene(options);
+    const BundleCovariance covariance = EstimateBundleCovariance(
+        test::FixedIntrinsics(), scene.priors, nullptr, {}, scene.observed, {});
+    const fs::path folder = testing::FreshTestDir("covariance_files_short") /
+                            (hover ? "hover" : "pass");
+    WriteCovarianceFiles(covariance, scene.observed, folder);
+    const nlohmann::json json =
+        nlohmann::json::parse(ReadFileToString(folder / "covariance.json"));
+    const nlohmann::json& cells =
+        json.at("points").at("short_baselines").at("cells");
+    const std::string warnings = json.at("warnings").dump();
+    if (!hover) {
+      EXPECT_TRUE(cells.empty()) << cells.dump();
+      EXPECT_EQ(warnings.find("short baselines"), std::string::npos);
+      continue;
+    }
+    ASSERT_GE(cells.size(), 2u);
+    const double cell =
+        json.at("points").at("short_baselines").at("cell_m").get<double>();
+    for (const nlohmann::json& centre : cells) {
+      EXPECT_GT(centre[0].get<double>(), 2.5 - cell) << centre.dump();
+      EXPECT_LT(centre[0].get<double>(), 3.5 + cell) << centre.dump();
+      EXPECT_LT(centre[2].get<double>(), 5.0) << centre.dump();
+    }
+    EXPECT_NE(warnings.find("short baselines"), std::string::npos) << warnings;
   }
 }
 

@@ -14,6 +14,7 @@
 
 #include "colmap_plugins/align/similarity.h"
 #include "colmap_plugins/ba/bundle_covariance.h"
+#include "colmap_plugins/ba/ceres_covariance.h"
 #include "colmap_plugins/ba/nav_prior.h"
 #include "colmap_plugins/ba/reprojection_error.h"
 #include "colmap_plugins/ba/rig_prior.h"
@@ -1132,6 +1133,7 @@ BundleCovariance Adjustment::Covariance(
   options.Check();
   BundleCovariance result;
   result.gauge = options.gauge;
+  result.method = options.method;
   result.gauge_description = ChooseCovarianceGauge(options.gauge);
   result.num_observations = static_cast<int>(num_observations_);
 
@@ -1215,8 +1217,19 @@ BundleCovariance Adjustment::Covariance(
   if (options.gauge == CovarianceGauge::kFreeNetwork) {
     FillSimilarityNullSpace(problem, point_ids, &schur);
   }
+  CeresCovarianceOptions ceres_options;
+  ceres_options.num_threads =
+      options_.num_threads > 0
+          ? options_.num_threads
+          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const SchurCovariance covariance =
-      ComputeSchurCovariance(&problem, reduced, points, schur);
+      options.method == CovarianceMethod::kSchur
+          ? ComputeSchurCovariance(&problem, reduced, points, schur)
+          : ComputeCeresCovariance(&problem, reduced,
+                                   options.point_marginals
+                                       ? points
+                                       : std::vector<EliminatedPoint>(),
+                                   ceres_options);
 
   // Tangent coordinates of a pose -> [rotation (3); translation (3)].
   const auto pose_embedding = [&](size_t i) {
@@ -1372,6 +1385,20 @@ BundleCovariance EstimateBundleCovariance(
         "coverage gaps: {} cells of {:.2g} m ({:.3g} m^2) inside the survey "
         "hold no point; see uncertainty_map.png",
         gaps.cell_centres.size(), gaps.cell_size, gaps.Area()));
+  }
+  covariance.short_baselines =
+      FindShortBaselines(model, ShortBaselineOptions());
+  const ShortBaselines& short_baselines = covariance.short_baselines;
+  if (!short_baselines.cell_centres.empty()) {
+    covariance.warnings.push_back(fmt::format(
+        "short baselines: {} cells of {:.2g} m ({:.3g} m^2) whose points are "
+        "seen over less than {:g} deg (median down to {:.2g} deg): every "
+        "image there was taken from nearly one place, so depth is weak; see "
+        "uncertainty_map.png",
+        short_baselines.cell_centres.size(), short_baselines.cell_size,
+        short_baselines.Area(), ShortBaselineOptions().min_angle_deg,
+        *std::min_element(short_baselines.cell_median_angle_deg.begin(),
+                          short_baselines.cell_median_angle_deg.end())));
   }
   return covariance;
 }

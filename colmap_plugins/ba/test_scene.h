@@ -29,6 +29,17 @@ struct TestSceneOptions {
   int num_points = 1500;
   // Images (line, index along the line) not taken: a coverage gap.
   std::vector<std::pair<int, int>> missing_images;
+  // Images taken while the vehicle hovered: at station (line, index),
+  // `count` images `spacing_m` apart along the line instead of one. With
+  // the stations around it missing, the floor under it is seen from a
+  // short baseline only.
+  struct Hover {
+    int line = 0;
+    int index = 0;
+    int count = 1;
+    double spacing_m = 0.0;
+  };
+  std::vector<Hover> hovers;
   double pixel_sigma = 0.5;
   double nav_sigma_m = 0.3;
   // Attitude priors (world-frame rotation noise, rad); drawn from their own
@@ -86,24 +97,33 @@ inline TestScene MakeTestScene(const TestSceneOptions& options) {
                     std::make_pair(line, k)) != options.missing_images.end()) {
         continue;
       }
-      line_of_image.push_back(line);
-      Image image;
-      image.image_id = image_id++;
-      image.camera_id = 1;
-      image.name = "img" + std::to_string(image.image_id) + ".png";
+      TestSceneOptions::Hover hover;
+      for (const TestSceneOptions::Hover& h : options.hovers) {
+        if (h.line == line && h.index == k) hover = h;
+      }
       const double x = (line % 2 == 0 ? k : options.images_per_line - 1 - k) *
                        options.spacing_m;
-      const Eigen::Vector3d center(
-          x + 0.05 * normal(rng),
-          line * options.line_spacing_m +
-              options.wiggle_m * std::sin(2.0 * M_PI * x / 10.0) +
-              0.05 * normal(rng),
-          options.altitude_m +
-              0.4 * options.wiggle_m * std::sin(2.0 * M_PI * x / 13.0) +
-              0.05 * normal(rng));
-      image.cam_from_world =
-          LookDownFrom(center, 0.05 * normal(rng) + (line % 2) * M_PI);
-      scene.truth.AddImage(image);
+      // The station's position jitter; a hovering vehicle holds it.
+      const Eigen::Vector3d jitter(0.05 * normal(rng), 0.05 * normal(rng),
+                                   0.05 * normal(rng));
+      for (int h = 0; h < hover.count; ++h) {
+        line_of_image.push_back(line);
+        Image image;
+        image.image_id = image_id++;
+        image.camera_id = 1;
+        image.name = "img" + std::to_string(image.image_id) + ".png";
+        const Eigen::Vector3d center =
+            jitter +
+            Eigen::Vector3d(
+                x + (h - 0.5 * (hover.count - 1)) * hover.spacing_m,
+                line * options.line_spacing_m +
+                    options.wiggle_m * std::sin(2.0 * M_PI * x / 10.0),
+                options.altitude_m +
+                    0.4 * options.wiggle_m * std::sin(2.0 * M_PI * x / 13.0));
+        image.cam_from_world =
+            LookDownFrom(center, 0.05 * normal(rng) + (line % 2) * M_PI);
+        scene.truth.AddImage(image);
+      }
     }
   }
 

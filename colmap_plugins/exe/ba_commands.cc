@@ -89,6 +89,12 @@ void AddCovarianceFlags(CommandLine* cli, BundleCovarianceOptions* options) {
       "image's pose and the second's scale, as COLMAP) or free_network "
       "(minimum-norm pseudo-inverse, inner constraints)",
       CovarianceGaugeFromName, CovarianceGaugeName);
+  cli->Add<CovarianceMethod>(
+      "--Covariance.method", &options->method,
+      "schur (ours: Schur complement, sparse inverse) or ceres_sparse_qr "
+      "(ceres::Covariance, the slow peer it is benchmarked against; "
+      "marginals only)",
+      CovarianceMethodFromName, CovarianceMethodName);
   cli->Add("--Covariance.pixel_sigma", &options->pixel_sigma_px,
            "Pixel noise per coordinate (px); 0: estimated from the "
            "reprojection residuals and the images' redundancy");
