@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -152,9 +151,6 @@ int Main(int argc, char** argv) {
   for (const uw::Point3D& point : model.Points3D()) {
     observations += point.track.size();
   }
-  std::ifstream load_file("/proc/loadavg");
-  double load = 0.0;
-  load_file >> load;
   const nlohmann::json record = {
       {"benchmark",
        "bundle adjustment without priors: uwcolmap bundle_adjuster vs colmap "
@@ -165,7 +161,7 @@ int Main(int argc, char** argv) {
       {"observations", observations},
       {"threads", threads},
       {"repetitions", repetitions},
-      {"load_average_1min_at_end", load},
+      {"load_average_1min_at_end", uw::bench::LoadAverage1Min()},
       {"acceptance", "ratio_wall <= 1.2 on mapper_model"},
       {"inputs", inputs}};
   uw::WriteFilesAtomically(

@@ -29,7 +29,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -354,9 +353,6 @@ int Main(int argc, char** argv) {
     failures.push_back("ceres::Covariance ran at no size >= 500 images");
   }
 
-  std::ifstream load_file("/proc/loadavg");
-  double load = 0.0;
-  load_file >> load;
   const nlohmann::json result = {
       {"benchmark",
        "covariance of the camera poses: uwcolmap covariance_estimator "
@@ -370,7 +366,7 @@ int Main(int argc, char** argv) {
       {"ceres_limit_s", options.ceres_limit_s},
       {"ba_max_images", options.ba_max_images},
       {"seed", options.seed},
-      {"load_average_1min_at_end", load},
+      {"load_average_1min_at_end", uw::bench::LoadAverage1Min()},
       {"acceptance",
        "ratio_ceres_over_ours_wall >= 10 at >= 500 images; aim: "
        "ours_cameras.wall_s < 10 at 2000 images"},

@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -63,6 +64,15 @@ inline ProcessTimes RunTimed(const std::vector<std::string>& argv,
     throw std::runtime_error(argv[0] + " failed; see " + log.string());
   }
   return times;
+}
+
+// The machine's 1-minute load average: a benchmark's record says how busy
+// the machine was besides.
+inline double LoadAverage1Min() {
+  std::ifstream file("/proc/loadavg");
+  double load = 0.0;
+  file >> load;
+  return load;
 }
 
 }  // namespace uw::bench
