@@ -185,6 +185,13 @@ class Adjustment {
   // Whether the placement rounds of Run apply: plain position priors and
   // nothing else that sees the model's placement.
   bool PlacementApplies() const;
+  // options_.num_threads, every core when it is not > 0.
+  int NumThreads() const {
+    return options_.num_threads > 0
+               ? options_.num_threads
+               : static_cast<int>(
+                     std::max(1u, std::thread::hardware_concurrency()));
+  }
   // Sum over observations of |reprojection error|^2, px^2.
   double SumSquaredReprojection() const;
   // Moves the model by the similarity that minimises the position priors'
@@ -743,10 +750,7 @@ void Adjustment::EstimateOffsetCovariance(NavBundleAdjustmentReport* report) {
   Build(weights, &problem, nullptr);
 
   ceres::Covariance::Options covariance_options;
-  covariance_options.num_threads =
-      options_.num_threads > 0
-          ? options_.num_threads
-          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  covariance_options.num_threads = NumThreads();
   ceres::Covariance covariance(covariance_options);
   std::vector<std::pair<const double*, const double*>> blocks;
   for (const auto& [dive, offset] : dive_offsets_) {
@@ -911,10 +915,7 @@ NavBundleAdjustmentReport Adjustment::Run() {
   solver_options.parameter_tolerance = options_.parameter_tolerance;
   solver_options.max_num_consecutive_invalid_steps = 10;
   solver_options.max_consecutive_nonmonotonic_steps = 10;
-  solver_options.num_threads =
-      options_.num_threads > 0
-          ? options_.num_threads
-          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  solver_options.num_threads = NumThreads();
   // Under the likelihood weighting the priors hold the model's placement
   // (a similarity: scale above all) only weakly against the images, and
   // Levenberg-Marquardt, stepping along tangents, crawls along that curved
@@ -1218,10 +1219,7 @@ BundleCovariance Adjustment::Covariance(
     FillSimilarityNullSpace(problem, point_ids, &schur);
   }
   CeresCovarianceOptions ceres_options;
-  ceres_options.num_threads =
-      options_.num_threads > 0
-          ? options_.num_threads
-          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  ceres_options.num_threads = NumThreads();
   const SchurCovariance covariance =
       options.method == CovarianceMethod::kSchur
           ? ComputeSchurCovariance(&problem, reduced, points, schur)

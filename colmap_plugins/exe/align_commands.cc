@@ -11,6 +11,7 @@
 #include "common/mesh/mesh.h"
 #include "common/util/error.h"
 #include "common/util/file.h"
+#include "common/util/json_fields.h"
 
 namespace uw {
 namespace {
@@ -217,7 +218,7 @@ MeshComparisonOptions ModelComparerOptions::Dense() const {
   if (dense_max_range_m < 0.0 && !truth_dir.empty() &&
       fs::is_regular_file(sim_json)) {
     const nlohmann::json sim =
-        nlohmann::json::parse(ReadFileToString(sim_json));
+        ParseJsonText(ReadFileToString(sim_json), sim_json.string());
     // Folders from before uwsim stated it have none: any range.
     if (sim.contains("truth") && sim["truth"].contains("visible_range_m")) {
       options.max_range_m = sim["truth"]["visible_range_m"].get<double>();
