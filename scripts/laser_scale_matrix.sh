@@ -19,12 +19,17 @@
 #
 # A survey folder holding rows.csv (its finished chains) from an earlier run
 # is kept, so a stopped matrix resumes where it stopped; delete the folder
-# to redo that survey.
+# to redo that survey. With ROWS_DIR set, each finished survey's rows are
+# also copied there as WORLD_SEED.csv, and a survey with a file there is
+# taken from it instead of re-run: the 20 surveys take longer than one
+# sitting, so the matrix can grow over several machines. Every row names the
+# commit it ran at (with "-dirty" when the work tree had changes).
 #
 # Exit 1 when a survey fails or a method's intervals cover the truth in
 # fewer than 90 % of its chains (issue 16, acceptance 3).
 #
 # Environment: UWSIM (default build/bin/uwsim), UWCOLMAP (build/bin/uwcolmap),
+# ROWS_DIR (see above; CTest's is bench/results/laser_scale_matrix),
 # MC (Monte Carlo iterations, 5000), DRAWS (covariance draws, 200), MATCHER
 # (spatial: each image matched with its 50 nearest by the navigation, as a
 # user with navigation would; exhaustive takes hours on the 270-image scarp
@@ -42,6 +47,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 uwsim=${UWSIM:-$root/build/bin/uwsim}
 export UWCOLMAP=${UWCOLMAP:-$root/build/bin/uwcolmap}
 export MATCHER=${MATCHER:-spatial}
+rows_dir=${ROWS_DIR:-}
 mc=${MC:-5000}
 draws=${DRAWS:-200}
 surveys=("$@")
@@ -62,8 +68,13 @@ if [[ -e "$out" && -n "$(ls -A "$out" 2>/dev/null)" && ! -f "$out/$marker" ]]; t
 fi
 mkdir -p "$out"
 touch "$out/$marker"
+[[ -n "$rows_dir" ]] && mkdir -p "$rows_dir"
+commit=$(git -C "$root" rev-parse --short=12 HEAD 2>/dev/null || echo unknown)
+if [[ -n "$(git -C "$root" status --porcelain --untracked-files=no 2>/dev/null)" ]]; then
+  commit="$commit-dirty"
+fi
 
-header="world,seed,method,laser_scale,ci95_low,ci95_high,true_scale,scale_error_percent,truth_in_ci95,accepted_images,laser_images,mesh_median_m,mesh_median_percent_of_range,mesh_coverage_percent,dense_s,laser_s,model_draws,features_share_percent,spots_share_percent,calibration_share_percent,model_share_percent,navigation_z,problem"
+header="world,seed,method,laser_scale,ci95_low,ci95_high,true_scale,scale_error_percent,truth_in_ci95,accepted_images,laser_images,mesh_median_m,mesh_median_percent_of_range,mesh_coverage_percent,dense_s,laser_s,model_draws,features_share_percent,spots_share_percent,calibration_share_percent,model_share_percent,navigation_z,problem,commit"
 echo "$header" > "$out/matrix.csv"
 n=0
 for survey in "${surveys[@]}"; do
@@ -72,9 +83,15 @@ for survey in "${surveys[@]}"; do
   dir="$out/${world}_$seed"
   n=$((n + 1))
   echo "[matrix $n/${#surveys[@]}] $world, seed $seed: $dir"
+  if [[ -n "$rows_dir" && -f "$rows_dir/${world}_$seed.csv" ]]; then
+    echo "  taken from $rows_dir/${world}_$seed.csv (delete it to redo the survey)"
+    cat "$rows_dir/${world}_$seed.csv" >> "$out/matrix.csv"
+    continue
+  fi
   if [[ -f "$dir/rows.csv" ]]; then
     echo "  kept from an earlier run (delete $dir to redo it)"
     cat "$dir/rows.csv" >> "$out/matrix.csv"
+    [[ -n "$rows_dir" ]] && cp "$dir/rows.csv" "$rows_dir/${world}_$seed.csv"
     continue
   fi
   rm -rf "$dir"
@@ -96,14 +113,15 @@ for survey in "${surveys[@]}"; do
     fi
   fi
   if [[ -z "$problem" ]]; then
-    tail -n +2 "$dir/compare/chain.csv" | sed "s/^/$world,$seed,/; s/\$/,/" \
+    tail -n +2 "$dir/compare/chain.csv" | sed "s/^/$world,$seed,/; s/\$/,,$commit/" \
       > "$dir/rows.csv.tmp"
     mv "$dir/rows.csv.tmp" "$dir/rows.csv"
     cat "$dir/rows.csv" >> "$out/matrix.csv"
+    [[ -n "$rows_dir" ]] && cp "$dir/rows.csv" "$rows_dir/${world}_$seed.csv"
     tail -n 2 "$dir/compare.log" | sed 's/^/  /'
   else
     echo "  $problem"
-    echo "$world,$seed,,,,,,,,,,,,,,,,,,,,,\"${problem//\"/\'}\"" >> "$out/matrix.csv"
+    echo "$world,$seed,,,,,,,,,,,,,,,,,,,,,\"${problem//\"/\'}\",$commit" >> "$out/matrix.csv"
   fi
 done
 
