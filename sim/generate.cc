@@ -71,7 +71,8 @@ Reconstruction TrueModel(
 }  // namespace
 
 GenerateSummary Generate(const SimConfig& config, const fs::path& out,
-                         const std::function<void(size_t, size_t)>& progress) {
+                         const std::function<void(size_t, size_t)>& progress,
+                         bool render_images) {
   config.Check();
   if (fs::exists(out) && !fs::is_empty(out)) {
     throw ErrorAt(out.string(),
@@ -122,13 +123,15 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
   // One renderer per camera: it unprojects every pixel once.
   std::vector<std::unique_ptr<Renderer>> renderers;
   for (const Camera& camera : cameras) {
+    if (!render_images) break;
     renderers.push_back(std::make_unique<Renderer>(caster, *world.texture,
                                                    camera, config.render));
   }
   const std::vector<LaserShot> shots =
       PlanLaserShots(stations, config.lasers, config.seed);
   summary.num_laser_images = shots.size();
-  const size_t num_frames = all_images.size() + 2 * shots.size();
+  const size_t num_frames =
+      render_images ? all_images.size() + 2 * shots.size() : 0;
   size_t frames_done = 0;
   const bool jpeg = config.render.sensor.jpeg_quality > 0;
   // Frame k of the survey (laser images after the survey images) keys its
@@ -154,7 +157,7 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
     ++frames_done;
     if (progress) progress(frames_done, num_frames);
   };
-  for (size_t k = 0; k < cameras.size(); ++k) {
+  for (size_t k = 0; k < renderers.size(); ++k) {
     for (const SurveyStation& station : images[k]) {
       render(*renderers[k], station.cam_from_world, FrameOptions(),
              out / "images" / station.image_name);
@@ -173,10 +176,12 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
   }
   nlohmann::json shots_truth = nlohmann::json::array();
   for (const LaserShot& shot : shots) {
-    render(*renderers[0], shot.cam_from_world, lasers_on,
-           out / "laser_images" / shot.name);
-    render(*renderers[0], shot.aux_cam_from_world, aux_frame,
-           out / "laser_images" / shot.aux_name);
+    if (render_images) {
+      render(*renderers[0], shot.cam_from_world, lasers_on,
+             out / "laser_images" / shot.name);
+      render(*renderers[0], shot.aux_cam_from_world, aux_frame,
+             out / "laser_images" / shot.aux_name);
+    }
     shots_truth.push_back(LaserShotTruth(shot, true_lasers, config.lasers,
                                          caster, config.camera));
   }
@@ -191,6 +196,7 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
   sim_json["truth"] = {
       {"camera_mount", CameraMountName(SurveyCameraMount(world))},
       {"visible_range_m", VisibleRange(config.render)},
+      {"rendered", render_images},
       {"dive_biases_m", ToJson(summary.dive_biases)},
       {"num_images", all_images.size()},
       {"num_laser_images", shots.size()},

@@ -37,8 +37,14 @@ struct GenerateSummary {
 //   truth/sim.json          the configuration, seed and dive biases
 // `progress(done, total)` is called after each image (laser and auxiliary
 // images included).
+//
+// With `render_images` false, images/ and laser_images/ are not written and
+// everything else is as a rendered run writes it, but for truth/sim.json's
+// "rendered": false: the plan and its truth in seconds, for what needs no
+// pixels (uwsim observe's synthetic tracks, the covariance's Monte Carlo).
 GenerateSummary Generate(
     const SimConfig& config, const std::filesystem::path& out,
-    const std::function<void(size_t, size_t)>& progress = nullptr);
+    const std::function<void(size_t, size_t)>& progress = nullptr,
+    bool render_images = true);
 
 }  // namespace uw::sim

@@ -38,6 +38,9 @@ void AddGenerateFlags(CommandLine* cli, GenerateCommandOptions* options) {
   cli->Add("--num_threads", &options->num_threads,
            "Threads to render with (-1: all cores); the output does not "
            "depend on it");
+  cli->Add("--render_images", &options->render_images,
+           "0: write no images, only the plan, navigation, laser set-up and "
+           "truth (seconds, not minutes; enough for uwsim observe)");
 }
 
 void RunGenerate(const GenerateCommandOptions& options) {
@@ -53,20 +56,26 @@ void RunGenerate(const GenerateCommandOptions& options) {
                                          start)
         .count();
   };
-  const GenerateSummary summary =
-      Generate(config, options.out, [&](size_t done, size_t total) {
+  const GenerateSummary summary = Generate(
+      config, options.out,
+      [&](size_t done, size_t total) {
         if (done == total || done % 10 == 0) {
           std::cout << fmt::format("[uwsim] rendered {}/{} images ({:.6g} s)",
                                    done, total, seconds())
                     << std::endl;
         }
-      });
+      },
+      options.render_images);
   std::cout << fmt::format(
                    "[uwsim] {} images and {} laser images (+ auxiliaries) of "
-                   "{}/{} ({} triangles) written to {} in {:.6g} s",
+                   "{}/{} ({} triangles) {} to {} in {:.6g} s",
                    summary.num_images, summary.num_laser_images,
                    WorldKindName(config.world), SurveyKindName(config.survey),
-                   summary.num_triangles, options.out, seconds())
+                   summary.num_triangles,
+                   options.render_images
+                       ? "written"
+                       : "planned (not rendered; truth written)",
+                   options.out, seconds())
             << std::endl;
 }
 

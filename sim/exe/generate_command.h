@@ -22,6 +22,7 @@ struct GenerateCommandOptions {
   std::optional<uint64_t> seed;
   std::optional<int> max_images;  // negative: as if not given
   int num_threads = -1;           // <= 0: all cores; never changes the output
+  bool render_images = true;      // false: the plan and truth, no images
 
   // Every value is checked where it applies (SimConfig::Check, Generate).
   void Check() const {}
