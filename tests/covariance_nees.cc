@@ -139,7 +139,8 @@ Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed) {
     point_sum += trial_point;
     std::cout << "[ trial " << trial << " ] mean NEES poses "
               << trial_pose / trial_poses << ", points "
-              << trial_point / covariance.points.size() << "\n";
+              << trial_point / covariance.points.size()
+              << std::endl;  // flushed: a stopped run still shows its trials
     fs::remove_all(trial_dir);
   }
   return {pose_sum / num_poses, point_sum / num_points};
