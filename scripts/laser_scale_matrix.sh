@@ -25,7 +25,7 @@
 # is kept, so a stopped matrix resumes where it stopped; delete the folder
 # to redo that survey. With ROWS_DIR set, each finished survey's rows are
 # also copied there as WORLD_SEED.csv, and a survey with a file there is
-# taken from it instead of re-run: the 20 surveys take longer than one
+# taken from it instead of re-run: the 21 surveys take longer than one
 # sitting, so the matrix can grow over several machines. Every row names the
 # commit it ran at (with "-dirty" when the work tree had changes).
 #
