@@ -121,11 +121,11 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
 
   const RayCaster caster(world.mesh);
   // One renderer per camera: it unprojects every pixel once.
+  // None without images: the loops below then render nothing.
   std::vector<std::unique_ptr<Renderer>> renderers;
-  for (const Camera& camera : cameras) {
-    if (!render_images) break;
+  for (size_t k = 0; render_images && k < cameras.size(); ++k) {
     renderers.push_back(std::make_unique<Renderer>(caster, *world.texture,
-                                                   camera, config.render));
+                                                   cameras[k], config.render));
   }
   const std::vector<LaserShot> shots =
       PlanLaserShots(stations, config.lasers, config.seed);
