@@ -1,9 +1,11 @@
 #include "tests/covariance_nees.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -26,10 +28,12 @@ namespace {
 namespace fs = std::filesystem;
 
 // nav.csv with the true vehicle positions (truth/nav.csv) plus Gaussian
-// noise of the survey's stated sigmas (nav.csv's std_x, std_y, std_z); the
-// other columns as the survey's.
+// noise of the survey's stated sigmas (nav.csv's std_x, std_y, std_z); with
+// `attitude`, the true roll, pitch and yaw plus noise of theirs too (from a
+// stream of its own: the positions' draws stay as they were); the other
+// columns as the survey's.
 void WriteNoisyNavigation(const fs::path& sim_dir, const fs::path& path,
-                          unsigned seed) {
+                          unsigned seed, bool attitude) {
   const std::vector<std::string> columns = {
       "image_name", "time",  "dive",     "x",         "y",
       "z",          "roll",  "pitch",    "yaw",       "std_x",
@@ -39,6 +43,7 @@ void WriteNoisyNavigation(const fs::path& sim_dir, const fs::path& path,
       CsvTable::Read(sim_dir / "truth" / "nav.csv", columns, columns);
   ASSERT_EQ(stated.NumRows(), truth.NumRows());
   std::mt19937 rng(seed);
+  std::mt19937 attitude_rng(seed + 1000000);
   std::normal_distribution<double> normal;
   std::ofstream out(path);
   for (size_t c = 0; c < stated.Header().size(); ++c) {
@@ -54,6 +59,10 @@ void WriteNoisyNavigation(const fs::path& sim_dir, const fs::path& path,
       if (column == "x" || column == "y" || column == "z") {
         out << truth.Double(row, column) +
                    stated.Double(row, "std_" + column) * normal(rng);
+      } else if (attitude &&
+                 (column == "roll" || column == "pitch" || column == "yaw")) {
+        out << truth.Double(row, column) +
+                   stated.Double(row, "std_" + column) * normal(attitude_rng);
       } else {
         out << CsvField(stated.Text(row, column));
       }
@@ -67,9 +76,33 @@ Eigen::Vector3d RotationVector(const Eigen::Matrix3d& rotation) {
   return angle_axis.angle() * angle_axis.axis();
 }
 
+// The widest angle (deg) between two of the true rays to a point: how well
+// its depth is triangulated.
+double TriangulationAngleDeg(const Point3D& point,
+                             const Reconstruction& truth) {
+  std::vector<Eigen::Vector3d> rays;
+  for (const TrackElement& element : point.track) {
+    rays.push_back(
+        (truth.FindImage(element.image_id)->ProjectionCenter() - point.xyz)
+            .normalized());
+  }
+  double widest = 0.0;
+  for (size_t a = 0; a < rays.size(); ++a) {
+    for (size_t b = a + 1; b < rays.size(); ++b) {
+      widest = std::max(widest,
+                        std::acos(std::clamp(rays[a].dot(rays[b]), -1.0, 1.0)));
+    }
+  }
+  return widest * 180.0 / M_PI;
+}
+
+// Points' NEES by their triangulation angle: where a mean off 3 comes from.
+constexpr double kAngleBinEdgesDeg[] = {5.0, 15.0};
+
 }  // namespace
 
-Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed) {
+Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed,
+              bool attitude) {
   const fs::path uwcolmap = fs::path(UW_BIN_DIR) / "uwcolmap";
   const fs::path dir = FreshTestDir(
       "uw_covariance_nees_" + sim_dir.parent_path().filename().string() + "_" +
@@ -80,6 +113,8 @@ Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed) {
   double point_sum = 0.0;
   size_t num_poses = 0;
   size_t num_points = 0;
+  std::vector<double> bin_sums(std::size(kAngleBinEdgesDeg) + 1, 0.0);
+  std::vector<size_t> bin_counts(bin_sums.size(), 0);
   for (int trial = 0; trial < kNeesTrials; ++trial) {
     const fs::path trial_dir = dir / std::to_string(trial);
     fs::create_directories(trial_dir / "observed");
@@ -92,9 +127,11 @@ Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed) {
     WriteModel(observed, trial_dir / "observed", ModelFormat::kBinary);
     std::string navigation = " --Covariance.gauge held";
     if (fused) {
-      WriteNoisyNavigation(sim_dir, trial_dir / "nav.csv", 2000 + trial);
-      navigation =
-          " --nav " + Quoted(trial_dir / "nav.csv") + SurveyMountFlags(sim_dir);
+      WriteNoisyNavigation(sim_dir, trial_dir / "nav.csv", 2000 + trial,
+                           attitude);
+      navigation = " --nav " + Quoted(trial_dir / "nav.csv") +
+                   SurveyMountFlags(sim_dir) +
+                   (attitude ? " --Nav.use_attitude 1" : "");
     }
     const auto adjusted = RunProcess(
         Quoted(uwcolmap) + " bundle_adjuster --input_path " +
@@ -129,9 +166,17 @@ Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed) {
       ++trial_poses;
     }
     for (const PointCovariance& point : covariance.points) {
-      const Eigen::Vector3d error = model.FindPoint3D(point.point3D_id)->xyz -
-                                    observed.FindPoint3D(point.point3D_id)->xyz;
-      trial_point += error.dot(point.xyz.ldlt().solve(error));
+      const Point3D& true_point = *observed.FindPoint3D(point.point3D_id);
+      const Eigen::Vector3d error =
+          model.FindPoint3D(point.point3D_id)->xyz - true_point.xyz;
+      const double nees = error.dot(point.xyz.ldlt().solve(error));
+      trial_point += nees;
+      const double angle = TriangulationAngleDeg(true_point, truth);
+      const size_t bin = std::upper_bound(std::begin(kAngleBinEdgesDeg),
+                                          std::end(kAngleBinEdgesDeg), angle) -
+                         std::begin(kAngleBinEdgesDeg);
+      bin_sums[bin] += nees;
+      ++bin_counts[bin];
     }
     num_poses += trial_poses;
     num_points += covariance.points.size();
@@ -143,6 +188,16 @@ Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed) {
               << std::endl;  // flushed: a stopped run still shows its trials
     fs::remove_all(trial_dir);
   }
+  std::cout << "[ figures ] points' mean NEES by triangulation angle:";
+  for (size_t bin = 0; bin < bin_sums.size(); ++bin) {
+    std::cout << (bin == 0                     ? " under "
+                  : bin + 1 == bin_sums.size() ? ", over "
+                                               : ", to ")
+              << kAngleBinEdgesDeg[std::min(bin, bin_sums.size() - 2)]
+              << " deg " << bin_sums[bin] / std::max<size_t>(1, bin_counts[bin])
+              << " (" << bin_counts[bin] << " points)";
+  }
+  std::cout << "\n";
   return {pose_sum / num_poses, point_sum / num_points};
 }
 

@@ -20,9 +20,11 @@ struct Nees {
 // `points_observed` points; `fused`: with the noisy navigation (gauge: the
 // priors), otherwise without (gauge: held, the first image's pose and one
 // coordinate of the second's translation, which start at the truth and so
-// put the estimate in the truth's datum).
+// put the estimate in the truth's datum); `attitude` (fused only): the
+// log's roll, pitch and yaw as priors too, with fresh noise of their stated
+// sigmas.
 Nees MeanNees(const std::filesystem::path& sim_dir, bool fused,
-              int points_observed);
+              int points_observed, bool attitude = false);
 
 // Within 10 % of the dimension: a covariance too small or too large by 10 %
 // in variance fails.

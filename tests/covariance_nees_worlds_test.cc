@@ -30,11 +30,20 @@ class CovarianceNeesOnWorlds : public ::testing::TestWithParam<std::string> {
   }
 };
 
+// The breakwater's, canyon's and scarp's plans are single passes (or two
+// stacked lines): positions alone leave the rotation about the pass to the
+// centres' few-cm scatter, the adjuster warns (track_line.h), and the
+// fusion a user is told to run there takes the log's attitude too.
+bool OnOneLine(const std::string& world) { return world != "vent"; }
+
 TEST_P(CovarianceNeesOnWorlds, FusedAdjustmentsAreCalibrated) {
-  const Nees nees = MeanNees(SimDir(), true, NumPoints());
+  const bool attitude = OnOneLine(GetParam());
+  const Nees nees = MeanNees(SimDir(), true, NumPoints(), attitude);
   std::cout << "[ figures ] " << kNeesTrials << " fused re-adjustments of the "
-            << GetParam() << " plan: mean NEES poses " << nees.pose
-            << " (6), points " << nees.point << " (3)\n";
+            << GetParam() << " plan"
+            << (attitude ? " (positions and attitude)" : " (positions)")
+            << ": mean NEES poses " << nees.pose << " (6), points "
+            << nees.point << " (3)\n";
   ExpectCalibrated(nees);
 }
 

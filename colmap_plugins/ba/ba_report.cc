@@ -89,6 +89,7 @@ nlohmann::json BaReportJson(const NavBundleAdjustmentReport& report,
       {"final_cost", Terms(report.final_terms)},
       {"dive_offsets", offsets},
       {"covariance_note", report.covariance_note},
+      {"warnings", report.warnings},
       {"prior_residual_rms_m",
        report.prior_residuals.empty()
            ? 0.0

@@ -122,7 +122,8 @@ struct BundleCovariance {
   ShortBaselines short_baselines;
   // Where the linearised covariance is not to be trusted (printed, and in
   // covariance.json): a focal length whose sigma exceeds
-  // kPoorFocalLengthFraction of itself; coverage gaps; short baselines.
+  // kPoorFocalLengthFraction of itself; coverage gaps; short baselines;
+  // priors on a nearly straight track without attitude (track_line.h).
   std::vector<std::string> warnings;
   // From ComputeSchurCovariance.
   int num_residuals = 0;

@@ -19,6 +19,7 @@
 #include "colmap_plugins/ba/reprojection_error.h"
 #include "colmap_plugins/ba/rig_prior.h"
 #include "colmap_plugins/ba/schur_covariance.h"
+#include "colmap_plugins/ba/track_line.h"
 #include "colmap_plugins/cameras/camera_models.h"
 #include "common/util/error.h"
 
@@ -1383,6 +1384,10 @@ BundleCovariance EstimateBundleCovariance(
         "coverage gaps: {} cells of {:.2g} m ({:.3g} m^2) inside the survey "
         "hold no point; see uncertainty_map.png",
         gaps.cell_centres.size(), gaps.cell_size, gaps.Area()));
+  }
+  if (const auto warning =
+          TrackLineWarning(model, priors, adjuster.use_attitude)) {
+    covariance.warnings.push_back(*warning);
   }
   covariance.short_baselines =
       FindShortBaselines(model, ShortBaselineOptions());

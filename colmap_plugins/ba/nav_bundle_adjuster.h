@@ -170,6 +170,10 @@ struct NavBundleAdjustmentReport {
   double solve_time_s = 0.0;
   double covariance_time_s = 0.0;
   std::string covariance_note;
+  // What the result does not hold, printed and in ba_report.json (the
+  // controller's: a track the positions leave a rotation of,
+  // track_line.h).
+  std::vector<std::string> warnings;
 };
 
 // Indices of a camera model's parameters that `options` keep constant

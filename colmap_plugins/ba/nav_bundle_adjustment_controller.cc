@@ -7,6 +7,7 @@
 
 #include "colmap_plugins/ba/ba_report.h"
 #include "colmap_plugins/ba/prior_alignment.h"
+#include "colmap_plugins/ba/track_line.h"
 #include "common/util/error.h"
 
 namespace uw {
@@ -212,6 +213,12 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
     if (!inputs.priors.empty()) {
       result.world_from_adjusted_model = AlignToPriors(inputs.priors, model);
     }
+  }
+  const bool attitude_priors =
+      options.strategy == NavStrategy::kPrior && options.adjuster.use_attitude;
+  if (const auto warning =
+          TrackLineWarning(*model, inputs.priors, attitude_priors)) {
+    result.report.warnings.push_back(*warning);
   }
   result.total_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start)

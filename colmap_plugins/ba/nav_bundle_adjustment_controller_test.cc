@@ -244,6 +244,30 @@ TEST(NavBundleAdjustmentController, PosteriorStrategyAlignsAfterAPlainBa) {
   EXPECT_TRUE(json["run"].contains("posterior_similarity"));
 }
 
+// A single pass with position priors only: its rotation about the pass is
+// not what the positions can hold (track_line.h), which the report says;
+// on two lines it says nothing.
+TEST(NavBundleAdjustmentController, WarnsWhenPositionsLieOnOneLine) {
+  test::TestSceneOptions scene_options;
+  scene_options.num_lines = 1;
+  scene_options.images_per_line = 10;
+  scene_options.wiggle_m = 0.05;
+  scene_options.num_points = 600;
+  const test::TestScene pass = test::MakeTestScene(scene_options);
+  Reconstruction model = ModelInItsOwnFrame(pass);
+  const NavBundleAdjustmentControllerOptions options = FixedWeight(2.0);
+  const NavBundleAdjustmentResult result =
+      AdjustModelWithNavigation(options, InputsOf(pass), &model);
+  const nlohmann::json json = NavBundleAdjustmentJson(options, result, model);
+  ASSERT_EQ(json["warnings"].size(), 1u);
+  EXPECT_NE(json["warnings"][0].get<std::string>().find("nearly on one line"),
+            std::string::npos);
+  Reconstruction lawnmower = ModelInItsOwnFrame(SmallScene());
+  const NavBundleAdjustmentResult lines =
+      AdjustModelWithNavigation(options, InputsOf(SmallScene()), &lawnmower);
+  EXPECT_TRUE(lines.report.warnings.empty());
+}
+
 TEST(NavBundleAdjustmentController, WithoutPriorsItIsAPlainAdjustment) {
   const test::TestScene scene = SmallScene();
   Reconstruction model = scene.observed;

@@ -194,6 +194,9 @@ void RunBundleAdjuster(const BundleAdjusterOptions& options) {
   const NavBundleAdjustmentResult result =
       AdjustModelWithNavigation(adjustment, &model, PrintLine);
   std::cout << FormatNavBundleAdjustmentSummary(adjustment, result, model);
+  for (const std::string& warning : result.report.warnings) {
+    std::cerr << "WARNING: " << warning << "\n";
+  }
   const nlohmann::json json =
       NavBundleAdjustmentJson(adjustment, result, model);
   // Computed before anything is written: a model without a covariance

@@ -9,9 +9,9 @@
 namespace uw::testing {
 
 std::string SurveyMountFlags(const std::filesystem::path& sim_dir) {
-  const nlohmann::json survey =
-      nlohmann::json::parse(ReadFileToString(sim_dir / "truth" / "sim.json"))
-          .at("survey_options");
+  const nlohmann::json sim =
+      nlohmann::json::parse(ReadFileToString(sim_dir / "truth" / "sim.json"));
+  const nlohmann::json& survey = sim.at("survey_options");
   const auto triple = [&](const char* key) {
     std::ostringstream text;
     text.precision(10);
@@ -20,8 +20,10 @@ std::string SurveyMountFlags(const std::filesystem::path& sim_dir) {
          << value[2].get<double>();
     return text.str();
   };
-  return " --mount down --lever_arm " + triple("lever_arm_m") +
-         " --boresight " + triple("boresight_deg");
+  // The world's own mount: the scarp's wall is surveyed to starboard.
+  return " --mount " + sim.at("truth").at("camera_mount").get<std::string>() +
+         " --lever_arm " + triple("lever_arm_m") + " --boresight " +
+         triple("boresight_deg");
 }
 
 }  // namespace uw::testing

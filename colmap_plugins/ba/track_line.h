@@ -1,0 +1,49 @@
+// Whether the navigation's positions alone fix the model's rotation: camera
+// centres nearly on one line (a single survey pass) fix the rotation about
+// that line only through their small scatter off it.
+//
+// On the breakwater's single pass (21 centres, 6 cm RMS across an 11 m
+// line, priors 0.95 m horizontally and 2 cm in depth) the fused
+// adjustment's linearised covariance put the roll about the pass at
+// 5-8 deg; over 65 re-adjustments with known noise the pose NEES was 8.3
+// against 6, with 4 trials above 20 (rotations 3 sigma off): the roll is
+// set by the product of the model's lateral offsets, which the images fix
+// only as well as their bending, and the depth priors, so its error is not
+// the Gaussian the linearisation gives. With the log's roll and pitch as
+// priors (--Nav.use_attitude 1) the rotation is fixed directly.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "colmap_plugins/ba/nav_bundle_adjuster.h"
+#include "colmap_plugins/scene/model.h"
+
+namespace uw {
+
+// RMS spread of camera centres along their principal axes.
+struct TrackSpread {
+  double along_m = 0.0;                             // the longest axis
+  double across_m = 0.0;                            // the second
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // the longest, world
+};
+TrackSpread MeasureTrackSpread(const std::vector<Eigen::Vector3d>& centres);
+
+// Across / along below this: a track like a single pass (the true centres
+// of the breakwater's and canyon's plans: 0.012-0.018; the scarp's two
+// stacked lines: 0.019; the seafloor's and vent's lawnmowers: 0.67-0.77).
+constexpr double kMinAcrossAlongSpread = 0.1;
+
+// The warning for position priors on such a track when no attitude prior
+// holds the rotation; none otherwise (no priors, or attitude priors used).
+// The track is measured on the model's centres of the images with priors:
+// the priors themselves scatter by their noise (0.95 m on the breakwater,
+// more than the pass is wide).
+std::optional<std::string> TrackLineWarning(
+    const Reconstruction& model, const std::vector<ImagePosePrior>& priors,
+    bool attitude_priors);
+
+}  // namespace uw
