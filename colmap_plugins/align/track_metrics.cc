@@ -42,6 +42,9 @@ TrackAxis TrackAxisFromCentres(const std::vector<Eigen::Vector3d>& centres) {
   }
   axis.origin = mean + 0.5 * (min + max) * axis.direction;
   axis.length = max - min;
+  const double n = static_cast<double>(centres.size());
+  axis.rms_along = std::sqrt(solver.eigenvalues()(2) / n);
+  axis.rms_across = std::sqrt(std::max(0.0, solver.eigenvalues()(1)) / n);
   return axis;
 }
 

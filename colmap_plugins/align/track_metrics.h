@@ -23,6 +23,10 @@ struct TrackAxis {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  // unit
   double length = 0.0;
+  // RMS spread of the centres along the direction and along the second
+  // principal axis (across a straight pass: its few-cm scatter).
+  double rms_along = 0.0;
+  double rms_across = 0.0;
 
   double AlongTrack(const Eigen::Vector3d& point) const {
     return direction.dot(point - origin);

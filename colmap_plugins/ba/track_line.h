@@ -17,20 +17,10 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "colmap_plugins/ba/nav_bundle_adjuster.h"
 #include "colmap_plugins/scene/model.h"
 
 namespace uw {
-
-// RMS spread of camera centres along their principal axes.
-struct TrackSpread {
-  double along_m = 0.0;                             // the longest axis
-  double across_m = 0.0;                            // the second
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // the longest, world
-};
-TrackSpread MeasureTrackSpread(const std::vector<Eigen::Vector3d>& centres);
 
 // Across / along below this: a track like a single pass (the true centres
 // of the breakwater's and canyon's plans: 0.012-0.018; the scarp's two

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "colmap_plugins/align/track_metrics.h"
+
 namespace uw {
 namespace {
 
@@ -47,13 +49,13 @@ TrackModel ModelOf(const std::vector<Eigen::Vector3d>& centres) {
   return track;
 }
 
-TEST(TrackLine, MeasuresTheSpreadAlongAndAcross) {
-  const TrackSpread spread = MeasureTrackSpread(Track(2, 2.0, 0.0));
+TEST(TrackLine, TrackAxisMeasuresTheSpreadAlongAndAcross) {
+  const TrackAxis track = TrackAxisFromCentres(Track(2, 2.0, 0.0));
   // 0 .. 11.4 m uniformly: sqrt((21^2 - 1) / 12) x 0.57 m.
-  EXPECT_NEAR(spread.along_m, 0.57 * std::sqrt((21.0 * 21.0 - 1.0) / 12.0),
+  EXPECT_NEAR(track.rms_along, 0.57 * std::sqrt((21.0 * 21.0 - 1.0) / 12.0),
               1e-9);
-  EXPECT_NEAR(spread.across_m, 1.0, 1e-9);
-  EXPECT_NEAR(std::abs(spread.axis.x()), 1.0, 1e-12);
+  EXPECT_NEAR(track.rms_across, 1.0, 1e-9);
+  EXPECT_NEAR(track.direction.x(), 1.0, 1e-12);
 }
 
 TEST(TrackLine, WarnsForASinglePassWithoutAttitude) {
