@@ -2,18 +2,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
+#include "colmap_plugins/align/sim3.h"
 #include "colmap_plugins/ba/covariance_files.h"
+#include "colmap_plugins/ba/covariance_samples.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/mesh/mesh.h"
 #include "common/util/csv.h"
@@ -96,17 +100,82 @@ double TriangulationAngleDeg(const Point3D& point,
   return widest * 180.0 / M_PI;
 }
 
+// The first-order similarity x' = (1 + sigma) x + omega x x + tau that takes
+// the truth's datum to the estimate's in the free network's metric: least
+// squares over Ceres' tangent of every pose (quaternion d, translation t of
+// cam_from_world) and point, with the null space's rows as
+// Adjustment::FillSimilarityNullSpace writes them. What is left is the error
+// the minimum-norm pseudo-inverse describes.
+Sim3d FreeNetworkDatum(const Reconstruction& estimate,
+                       const Reconstruction& true_poses,
+                       const Reconstruction& true_points) {
+  Eigen::Matrix<double, 7, 7> normal = Eigen::Matrix<double, 7, 7>::Zero();
+  Eigen::Matrix<double, 7, 1> right = Eigen::Matrix<double, 7, 1>::Zero();
+  for (const Image& image : estimate.Images()) {
+    const Rigid3d& cam_from_world = image.cam_from_world;
+    const Rigid3d& true_cam_from_world =
+        true_poses.FindImage(image.image_id)->cam_from_world;
+    // cam_from_world = [cos|d|, sin|d| d / |d|] * true cam_from_world.
+    const Eigen::AngleAxisd turn(cam_from_world.rotation *
+                                 true_cam_from_world.rotation.conjugate());
+    Eigen::Matrix<double, 6, 1> error;
+    error.head<3>() = 0.5 * turn.angle() * turn.axis();
+    error.tail<3>() =
+        cam_from_world.translation - true_cam_from_world.translation;
+    const Eigen::Matrix3d r = cam_from_world.rotation.toRotationMatrix();
+    Eigen::Matrix<double, 6, 7> rows = Eigen::Matrix<double, 6, 7>::Zero();
+    rows.block<3, 3>(0, 0) = -0.5 * r;
+    rows.block<3, 3>(3, 3) = -r;
+    rows.block<3, 1>(3, 6) = cam_from_world.translation;
+    normal += rows.transpose() * rows;
+    right += rows.transpose() * error;
+  }
+  for (const Point3D& point : estimate.Points3D()) {
+    const Eigen::Matrix<double, 3, 7> rows = SimilarityTangentAt(point.xyz);
+    normal += rows.transpose() * rows;
+    right += rows.transpose() *
+             (point.xyz - true_points.FindPoint3D(point.point3D_id)->xyz);
+  }
+  const Eigen::Matrix<double, 7, 1> theta = normal.ldlt().solve(right);
+  Sim3d datum;
+  const Eigen::Vector3d omega = theta.head<3>();
+  datum.rotation = omega.norm() > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(
+                                            omega.norm(), omega.normalized()))
+                                      : Eigen::Quaterniond::Identity();
+  datum.translation = theta.segment<3>(3);
+  datum.scale = std::exp(theta(6));
+  return datum;
+}
+
 // Points' NEES by their triangulation angle: where a mean off 3 comes from.
 constexpr double kAngleBinEdgesDeg[] = {5.0, 15.0};
 
 }  // namespace
 
-Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed,
+int NeesTrials() {
+  const char* trials = std::getenv("UW_NEES_TRIALS");
+  return trials != nullptr ? std::stoi(trials) : 100;
+}
+
+std::string NeesFigures(const std::string& what, const Nees& nees) {
+  std::ostringstream text;
+  text << "[ figures ] " << nees.num_trials << " " << what
+       << ": mean NEES poses " << nees.pose << " +- "
+       << nees.pose_standard_error << " (6), points " << nees.point << " +- "
+       << nees.point_standard_error << " (3)";
+  return text.str();
+}
+
+Nees MeanNees(const fs::path& sim_dir, NeesGauge gauge, int points_observed,
               bool attitude) {
+  const bool fused = gauge == NeesGauge::kPriors;
   const fs::path uwcolmap = fs::path(UW_BIN_DIR) / "uwcolmap";
-  const fs::path dir = FreshTestDir(
-      "uw_covariance_nees_" + sim_dir.parent_path().filename().string() + "_" +
-      sim_dir.filename().string() + (fused ? "_fused" : "_held"));
+  const fs::path dir = FreshTestDir("uw_covariance_nees_" +
+                                    sim_dir.parent_path().filename().string() +
+                                    "_" + sim_dir.filename().string() +
+                                    (fused                       ? "_fused"
+                                     : gauge == NeesGauge::kHeld ? "_held"
+                                                                 : "_free"));
   const Reconstruction truth = ReadModel(sim_dir / "truth");
   const TriangleMesh mesh = ReadPly(sim_dir / "truth" / "mesh.ply");
   double pose_sum = 0.0;
@@ -115,7 +184,10 @@ Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed,
   size_t num_points = 0;
   std::vector<double> bin_sums(std::size(kAngleBinEdgesDeg) + 1, 0.0);
   std::vector<size_t> bin_counts(bin_sums.size(), 0);
-  for (int trial = 0; trial < kNeesTrials; ++trial) {
+  const int num_trials = NeesTrials();
+  std::vector<double> trial_pose_means;
+  std::vector<double> trial_point_means;
+  for (int trial = 0; trial < num_trials; ++trial) {
     const fs::path trial_dir = dir / std::to_string(trial);
     fs::create_directories(trial_dir / "observed");
     sim::ObserveOptions observe;
@@ -125,7 +197,9 @@ Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed,
     // Started at the truth: its points are where the truth has them.
     const Reconstruction observed = sim::ObserveModel(truth, mesh, observe);
     WriteModel(observed, trial_dir / "observed", ModelFormat::kBinary);
-    std::string navigation = " --Covariance.gauge held";
+    std::string navigation = gauge == NeesGauge::kHeld
+                                 ? " --Covariance.gauge held"
+                                 : " --Covariance.gauge free_network";
     if (fused) {
       WriteNoisyNavigation(sim_dir, trial_dir / "nav.csv", 2000 + trial,
                            attitude);
@@ -140,9 +214,13 @@ Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed,
         true);
     EXPECT_EQ(adjusted.exit_code, 0) << adjusted.output;
     if (adjusted.exit_code != 0) return {};
-    const Reconstruction model = ReadModel(trial_dir / "ba");
+    Reconstruction model = ReadModel(trial_dir / "ba");
     const BundleCovariance covariance = ReadCovarianceSidecar(
         trial_dir / "ba" / "covariance" / "covariance.bin", model);
+    if (gauge == NeesGauge::kFreeNetwork) {
+      TransformReconstruction(
+          FreeNetworkDatum(model, truth, observed).Inverse(), &model);
+    }
     double trial_pose = 0.0;
     double trial_point = 0.0;
     size_t trial_poses = 0;
@@ -182,6 +260,8 @@ Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed,
     num_points += covariance.points.size();
     pose_sum += trial_pose;
     point_sum += trial_point;
+    trial_pose_means.push_back(trial_pose / trial_poses);
+    trial_point_means.push_back(trial_point / covariance.points.size());
     std::cout << "[ trial " << trial << " ] mean NEES poses "
               << trial_pose / trial_poses << ", points "
               << trial_point / covariance.points.size()
@@ -198,7 +278,22 @@ Nees MeanNees(const fs::path& sim_dir, bool fused, int points_observed,
               << " (" << bin_counts[bin] << " points)";
   }
   std::cout << "\n";
-  return {pose_sum / num_poses, point_sum / num_points};
+  const auto standard_error = [](const std::vector<double>& values) {
+    double mean = 0.0;
+    for (const double value : values) mean += value;
+    mean /= values.size();
+    double squares = 0.0;
+    for (const double value : values)
+      squares += (value - mean) * (value - mean);
+    return std::sqrt(squares / (values.size() - 1) / values.size());
+  };
+  Nees nees;
+  nees.pose = pose_sum / num_poses;
+  nees.point = point_sum / num_points;
+  nees.pose_standard_error = standard_error(trial_pose_means);
+  nees.point_standard_error = standard_error(trial_point_means);
+  nees.num_trials = num_trials;
+  return nees;
 }
 
 void ExpectCalibrated(const Nees& nees) {

@@ -19,21 +19,20 @@ const fs::path kSeafloorDir = fs::path(UW_SURVEY_DIR) / "sim";
 constexpr int kSeafloorPoints = 4000;
 
 TEST(CovarianceNees, FusedAdjustmentsOfTheUwsimSurveyAreCalibrated) {
-  const Nees nees = MeanNees(kSeafloorDir, true, kSeafloorPoints);
-  std::cout << "[ figures ] " << kNeesTrials
-            << " fused re-adjustments of the uwsim survey: mean NEES poses "
-            << nees.pose << " (6), points " << nees.point << " (3)\n";
+  const Nees nees = MeanNees(kSeafloorDir, NeesGauge::kPriors, kSeafloorPoints);
+  std::cout << NeesFigures("fused re-adjustments of the uwsim survey", nees)
+            << "\n";
   ExpectCalibrated(nees);
 }
 
 // Prior-free: no navigation, COLMAP's held gauge; the focal length and k1
 // self-calibrated from the images alone, as bundle_adjuster does by default.
 TEST(CovarianceNees, PriorFreeAdjustmentsOfTheUwsimSurveyAreCalibrated) {
-  const Nees nees = MeanNees(kSeafloorDir, false, kSeafloorPoints);
-  std::cout << "[ figures ] " << kNeesTrials
-            << " prior-free re-adjustments of the uwsim survey (held gauge): "
-               "mean NEES poses "
-            << nees.pose << " (6), points " << nees.point << " (3)\n";
+  const Nees nees = MeanNees(kSeafloorDir, NeesGauge::kHeld, kSeafloorPoints);
+  std::cout << NeesFigures(
+                   "prior-free re-adjustments of the uwsim survey (held gauge)",
+                   nees)
+            << "\n";
   ExpectCalibrated(nees);
 }
 
