@@ -1216,6 +1216,7 @@ BundleCovariance Adjustment::Covariance(
   schur.covisible_cross = options.covisible_cross;
   schur.num_samples = options.num_samples;
   schur.sample_seed = options.sample_seed;
+  schur.num_threads = NumThreads();
   if (options.gauge == CovarianceGauge::kFreeNetwork) {
     FillSimilarityNullSpace(problem, point_ids, &schur);
   }

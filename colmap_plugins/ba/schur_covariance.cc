@@ -30,6 +30,9 @@ void SchurCovarianceOptions::Check() const {
   if (num_samples < 0) {
     throw ErrorAt("num_samples must be >= 0, got ", num_samples);
   }
+  if (num_threads < 1) {
+    throw ErrorAt("num_threads must be >= 1, got ", num_threads);
+  }
 }
 
 namespace {
@@ -317,6 +320,7 @@ class Computation {
     ceres::Problem::EvaluateOptions evaluate;
     evaluate.parameter_blocks = blocks_;
     evaluate.apply_loss_function = true;
+    evaluate.num_threads = options_.num_threads;
     double cost = 0.0;
     if (!problem_->Evaluate(evaluate, &cost, nullptr, nullptr, &jacobian_)) {
       throw ErrorAt("the problem's Jacobian could not be evaluated");

@@ -86,6 +86,41 @@ TEST(SchurCovariance, IllConditionedProblemsLoseAt1e8To1e7) {
   }
 }
 
+// The Jacobian evaluated on several threads gives the same bits, and the
+// dense inverse's (a well-conditioned problem: held cameras, fixed
+// intrinsics).
+TEST(SchurCovariance, IsTheSameForAnyThreadCount) {
+  SmallProblem problem(Gauge::kHeld, false, false, 3, 600);
+  SchurCovarianceOptions one = WithCross();
+  SchurCovarianceOptions four = WithCross();
+  four.num_threads = 4;
+  const SchurCovariance a = ComputeSchurCovariance(
+      &problem.problem(), problem.reduced(), problem.points(), one);
+  const SchurCovariance b = ComputeSchurCovariance(
+      &problem.problem(), problem.reduced(), problem.points(), four);
+  ASSERT_EQ(a.reduced.size(), b.reduced.size());
+  for (size_t k = 0; k < a.reduced.size(); ++k) {
+    EXPECT_TRUE(a.reduced[k] == b.reduced[k]) << "reduced variable " << k;
+  }
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (size_t j = 0; j < a.points.size(); ++j) {
+    EXPECT_TRUE(a.points[j] == b.points[j]) << "point " << j;
+  }
+  EXPECT_EQ(a.cross.size(), b.cross.size());
+  const Eigen::MatrixXd information = problem.DenseInformation();
+  Eigen::MatrixXd ours;
+  Eigen::MatrixXd mask;
+  problem.Scatter(a, &ours, &mask);
+  EXPECT_LT(RelativeError(ours, information.inverse(), mask), 1e-9);
+  four.num_threads = 0;
+  ExpectErrorContaining(
+      [&] {
+        ComputeSchurCovariance(&problem.problem(), problem.reduced(),
+                               problem.points(), four);
+      },
+      "num_threads must be >= 1");
+}
+
 TEST(SchurCovariance, FreeNetworkIsTheMinimumNormPseudoInverse) {
   SmallProblem problem(Gauge::kFree, false);
   SchurCovarianceOptions options = WithCross();

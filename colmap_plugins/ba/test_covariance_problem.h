@@ -28,12 +28,12 @@ enum class Gauge { kPriors, kHeld, kFree };
 class SmallProblem {
  public:
   SmallProblem(Gauge gauge, bool huber, bool refine_intrinsics = false,
-               unsigned seed = 3)
+               unsigned seed = 3, int num_points = 160)
       : refine_intrinsics_(refine_intrinsics) {
     TestSceneOptions options;
     options.num_lines = 2;
     options.images_per_line = 5;
-    options.num_points = 160;
+    options.num_points = num_points;
     options.seed = seed;
     scene_ = MakeTestScene(options);
     Reconstruction& model = scene_.observed;
