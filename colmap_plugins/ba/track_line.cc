@@ -34,4 +34,19 @@ std::optional<std::string> TrackLineWarning(
       track.direction.y(), track.direction.z());
 }
 
+std::optional<std::string> WeakRotationWarning(double median_rotation_sigma_deg,
+                                               bool attitude_priors) {
+  if (attitude_priors ||
+      !(median_rotation_sigma_deg > kMaxPriorRotationSigmaDeg)) {
+    return std::nullopt;
+  }
+  return fmt::format(
+      "the navigation positions fix the model's rotation only to {:.3g} deg "
+      "(median camera, 1 sigma): a rotation this weak is not Gaussian, and "
+      "the world-frame sigmas of poses and points can be 10-25 % too small "
+      "(shape and scale are not affected). Add the log's attitude with "
+      "--Nav.use_attitude 1",
+      median_rotation_sigma_deg);
+}
+
 }  // namespace uw

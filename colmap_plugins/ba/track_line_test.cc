@@ -72,5 +72,13 @@ TEST(TrackLine, WarnsForASinglePassWithoutAttitude) {
   EXPECT_FALSE(TrackLineWarning(pass.model, {}, false));
 }
 
+TEST(TrackLine, WarnsWhenThePriorsRotationIsWeak) {
+  const auto warning = WeakRotationWarning(8.9, false);
+  ASSERT_TRUE(warning);
+  EXPECT_NE(warning->find("only to 8.9 deg"), std::string::npos) << *warning;
+  EXPECT_FALSE(WeakRotationWarning(8.9, true));
+  EXPECT_FALSE(WeakRotationWarning(4.3, false));
+}
+
 }  // namespace
 }  // namespace uw
