@@ -1391,26 +1391,9 @@ BundleCovariance EstimateBundleCovariance(
     covariance.warnings.push_back(*warning);
   }
   if (!priors.empty()) {
-    std::vector<double> rotation_sigmas_deg;
-    for (const ImageCovariance& image : covariance.images) {
-      if (image.held) continue;
-      rotation_sigmas_deg.push_back(
-          std::sqrt(
-              std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(
-                                image.RotationCovariance())
-                                .eigenvalues()(2))) *
-          180.0 / M_PI);
-    }
-    if (!rotation_sigmas_deg.empty()) {
-      std::nth_element(
-          rotation_sigmas_deg.begin(),
-          rotation_sigmas_deg.begin() + rotation_sigmas_deg.size() / 2,
-          rotation_sigmas_deg.end());
-      if (const auto warning = WeakRotationWarning(
-              rotation_sigmas_deg[rotation_sigmas_deg.size() / 2],
-              adjuster.use_attitude)) {
-        covariance.warnings.push_back(*warning);
-      }
+    if (const auto warning = WeakRotationWarning(
+            MedianRotationSigmaDeg(covariance), adjuster.use_attitude)) {
+      covariance.warnings.push_back(*warning);
     }
   }
   covariance.short_baselines =

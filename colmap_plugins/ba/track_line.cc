@@ -1,6 +1,10 @@
 #include "colmap_plugins/ba/track_line.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <fmt/format.h>
+#include <Eigen/Eigenvalues>
 
 #include "colmap_plugins/align/track_metrics.h"
 
@@ -24,14 +28,30 @@ std::optional<std::string> TrackLineWarning(
   return fmt::format(
       "the {} images with navigation positions lie nearly on one line (RMS "
       "{:.3g} m across it, {:.3g} m along, axis [{:.2f}, {:.2f}, {:.2f}]): "
-      "without "
-      "attitude priors only that scatter fixes the model's rotation about "
+      "without attitude priors only that scatter fixes the model's rotation "
+      "about "
       "the line, so that rotation (and the world position of everything "
       "off the line) can be several of its stated sigmas off; shape and "
       "scale are not affected. Add the log's roll and pitch with "
       "--Nav.use_attitude 1",
       centres.size(), track.rms_across, track.rms_along, track.direction.x(),
       track.direction.y(), track.direction.z());
+}
+
+double MedianRotationSigmaDeg(const BundleCovariance& covariance) {
+  std::vector<double> sigmas_deg;
+  for (const ImageCovariance& image : covariance.images) {
+    if (image.held) continue;
+    const double largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(
+                               image.RotationCovariance())
+                               .eigenvalues()(2);
+    sigmas_deg.push_back(std::sqrt(std::max(0.0, largest)) * 180.0 / M_PI);
+  }
+  if (sigmas_deg.empty()) return 0.0;
+  std::nth_element(sigmas_deg.begin(),
+                   sigmas_deg.begin() + sigmas_deg.size() / 2,
+                   sigmas_deg.end());
+  return sigmas_deg[sigmas_deg.size() / 2];
 }
 
 std::optional<std::string> WeakRotationWarning(double median_rotation_sigma_deg,

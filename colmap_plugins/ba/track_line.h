@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "colmap_plugins/ba/bundle_covariance.h"
 #include "colmap_plugins/ba/nav_bundle_adjuster.h"
 #include "colmap_plugins/scene/model.h"
 
@@ -39,6 +40,10 @@ constexpr double kMinAcrossAlongSpread = 0.1;
 // too weak for the linearisation: the vent's 8.9 failed, the seafloor
 // survey's 4.3 held (NEES 3.06).
 constexpr double kMaxPriorRotationSigmaDeg = 6.0;
+
+// The median over the images that are not held of their largest rotation
+// sigma (deg); 0 when every image is held.
+double MedianRotationSigmaDeg(const BundleCovariance& covariance);
 
 // The warning for a covariance in the priors' gauge without attitude
 // priors whose median camera rotation sigma exceeds the bound; none
