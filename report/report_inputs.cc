@@ -109,6 +109,7 @@ BaReportSummary ReadBaReport(const fs::path& path) {
     }
     summary.dive_offsets.push_back(offset);
   }
+  summary.warnings = json.value("warnings", std::vector<std::string>{});
   return summary;
 }
 

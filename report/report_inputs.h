@@ -60,6 +60,7 @@ struct BaReportSummary {
   std::optional<double> prior_residual_rms_m;
   std::vector<Residual> residuals;
   std::vector<DiveOffset> dive_offsets;
+  std::vector<std::string> warnings;  // the adjuster's (e.g. one pass)
 };
 BaReportSummary ReadBaReport(const std::filesystem::path& path);
 

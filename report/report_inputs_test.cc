@@ -49,6 +49,8 @@ TEST_F(ReportInputsTest, ReadsWhatTheReportShows) {
   ASSERT_EQ(ba.dive_offsets.size(), 2u);
   EXPECT_FALSE(ba.dive_offsets[0].sigma_m.has_value());
   EXPECT_EQ(ba.dive_offsets[1].offset_m, Eigen::Vector3d(0.25, -0.5, 0));
+  ASSERT_EQ(ba.warnings.size(), 1u);
+  EXPECT_NE(ba.warnings[0].find("nearly on one line"), std::string::npos);
 
   const LaserReportSummary laser = ReadLaserReport(inputs_.laser_report_dir);
   EXPECT_EQ(laser.scale, 1.0125);

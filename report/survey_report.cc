@@ -513,6 +513,7 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
     if (ba->prior_residual_rms_m) {
       nav_json["prior_residual_rms_m"] = *ba->prior_residual_rms_m;
     }
+    nav_json["warnings"] = ba->warnings;
     nav_html +=
         "<p>Navigation weight &lambda; = " + Fixed(ba->weight_px_per_m, 4) +
         " px/m (" + HtmlEscape(ba->weighting) + " weighting" +
@@ -526,6 +527,9 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
                    Fixed(*ba->prior_residual_rms_m, 3) + " m"
              : std::string()) +
         ".</p>\n";
+    for (const std::string& warning : ba->warnings) {
+      nav_html += "<p class=\"bad\">" + HtmlEscape(warning) + "</p>\n";
+    }
     if (ba->residuals.empty()) {
       nav_html += omit(
           "ba_report.json has no prior residuals (a BA without "

@@ -76,7 +76,10 @@ TEST_F(SurveyReportTest, WritesEverySectionFromEveryInput) {
         "gauge <b>priors</b>", "0.0310", "3 weak points",
         "image 3.png sees 4 points only", "spreads by 7.05 %",
         "200 draws of its covariance", "calibration 64 %, model 36 %",
-        "z = +4.25: beyond 3 &sigma;"}) {
+        "z = +4.25: beyond 3 &sigma;",
+        // The adjuster's warnings.
+        "<p class=\"bad\">position priors on one pass: the 4 camera "
+        "centres lie nearly on one line</p>"}) {
     EXPECT_NE(html.find(text), std::string::npos) << text;
   }
   // The least certain image first.
@@ -95,6 +98,7 @@ TEST_F(SurveyReportTest, WritesEverySectionFromEveryInput) {
   EXPECT_EQ(report.at("images").at("registered").get<int>(), 4);
   EXPECT_EQ(report.at("navigation").at("num_mahalanobis_above_95").get<int>(),
             1);
+  EXPECT_EQ(report.at("navigation").at("warnings").size(), 1u);
   EXPECT_EQ(report.at("total_time_s").get<double>(), 60.0);
   EXPECT_EQ(report.at("dense_surface").at("coverage").get<double>(), 0.95);
   EXPECT_EQ(report.at("num_images_in_index").get<size_t>(), 9u);

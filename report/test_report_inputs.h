@@ -96,7 +96,8 @@ inline SurveyReportInputs WriteTestReportInputs(
   {"name": "0.png", "dive": 1, "error_m": [0, -0.5, 0], "error_norm_m": 0.5, "mahalanobis": 1.0},
   {"name": "1.png", "dive": 1, "error_m": [0, -0.5, 0], "error_norm_m": 0.5, "mahalanobis": 1.0},
   {"name": "2.png", "dive": 2, "error_m": [0, -0.5, 0], "error_norm_m": 0.5, "mahalanobis": 1.0},
-  {"name": "3.png", "dive": 2, "error_m": [0, 0.5, 0], "error_norm_m": 0.5, "mahalanobis": 3.5}]}
+  {"name": "3.png", "dive": 2, "error_m": [0, 0.5, 0], "error_norm_m": 0.5, "mahalanobis": 3.5}],
+ "warnings": ["position priors on one pass: the 4 camera centres lie nearly on one line"]}
 )");
 
   inputs.laser_report_dir = dir / "laser";

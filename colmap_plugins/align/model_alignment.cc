@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "colmap_plugins/align/track_metrics.h"
 #include "colmap_plugins/nav/camera_prior.h"
 #include "colmap_plugins/nav/image_times.h"
 #include "colmap_plugins/nav/nav_csv.h"
@@ -189,6 +190,23 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
                   "--min_common_images is ",
                   options.min_common_images);
   }
+  std::map<std::string, Eigen::Vector3d> centre_of;
+  for (const Image& image : model.Images()) {
+    centre_of[image.name] = image.ProjectionCenter();
+  }
+  std::vector<Eigen::Vector3d> centres;
+  for (const std::string& name : alignment.image_names) {
+    centres.push_back(centre_of.at(name));
+  }
+  if (const auto line = DescribeOneLineTrack(centres)) {
+    alignment.warnings.push_back(
+        "the aligned " + *line +
+        ": only that scatter fixes the model's rotation about the line, so "
+        "that rotation (and the position of everything off the line) can be "
+        "several sigmas off; shape and scale are not affected. bundle_adjuster "
+        "--nav ... --Nav.use_attitude 1 fixes it with the log's roll and "
+        "pitch");
+  }
   return alignment;
 }
 
@@ -224,6 +242,7 @@ nlohmann::json ModelAlignmentJson(const ModelAlignment& alignment) {
       {"num_images", alignment.image_names.size()},
       {"num_inliers", similarity.num_inliers},
       {"rms_m", similarity.rms_m},
+      {"warnings", alignment.warnings},
       {"images", images}};
   if (alignment.association == ReferenceAssociation::kClosestPoint) {
     json["iterations"] = alignment.iterations;

@@ -57,6 +57,8 @@ struct ModelAlignment {
   SimilarityResult similarity;             // reference_from_model
   int iterations = 0;                      // closest_point only
   bool converged = true;
+  // What the user must know about the result (centres on one line).
+  std::vector<std::string> warnings;
 };
 
 // Camera-centre priors of the model's images from navigation, by name.

@@ -18,18 +18,20 @@ namespace fs = std::filesystem;
 const std::vector<Eigen::Vector3d> kCentres = {
     {0, 0, 0}, {1, 0, 0}, {2, 0.5, 0}, {3, 0, 0.2}, {1.5, 2, 0}};
 
-Reconstruction FiveImages() {
+Reconstruction ImagesAt(const std::vector<Eigen::Vector3d>& centres) {
   Reconstruction model;
-  for (size_t k = 0; k < kCentres.size(); ++k) {
+  for (size_t k = 0; k < centres.size(); ++k) {
     Image image;
     image.image_id = static_cast<image_t>(k + 1);
     image.camera_id = 1;
     image.name = fmt::format("img{}.png", k);
-    image.cam_from_world.translation = -kCentres[k];
+    image.cam_from_world.translation = -centres[k];
     model.AddImage(image);
   }
   return model;
 }
+
+Reconstruction FiveImages() { return ImagesAt(kCentres); }
 
 // The references: the centres scaled by 2 and moved by (10, 20, 30).
 Eigen::Vector3d ReferenceOf(const Eigen::Vector3d& centre) {
@@ -132,6 +134,38 @@ TEST(ModelAlignment, NavigationRowsOfOtherImagesAreNoError) {
   EXPECT_EQ(json["num_images"], 5);
   EXPECT_EQ(json["images"].size(), 5u);
   EXPECT_FALSE(json.contains("iterations"));
+  EXPECT_TRUE(alignment.warnings.empty());
+  EXPECT_TRUE(json["warnings"].empty());
+}
+
+// A single survey pass: 21 centres 4 cm RMS off a 10 m line. The references'
+// noise across it fixes the model's rotation about the line, which a user
+// aligning such a model must be told.
+TEST(ModelAlignment, WarnsWhenTheCentresLieOnOneLine) {
+  const fs::path dir = testing::FreshTestDir("uw_model_alignment_line");
+  std::vector<Eigen::Vector3d> centres;
+  for (int k = 0; k <= 20; ++k) {
+    centres.emplace_back(0.5 * k, k % 2 == 0 ? 0.04 : -0.04,
+                         k % 3 == 0 ? 0.03 : 0.0);
+  }
+  ModelAlignmentOptions options;
+  options.ref_images_path = (dir / "ref.txt").string();
+  std::ofstream ref(options.ref_images_path);
+  for (size_t k = 0; k < centres.size(); ++k) {
+    const Eigen::Vector3d position = ReferenceOf(centres[k]);
+    ref << fmt::format("img{}.png {} {} {}\n", k, position.x(), position.y(),
+                       position.z());
+  }
+  ref.close();
+  const ModelAlignment alignment = AlignModel(options, ImagesAt(centres));
+  ASSERT_EQ(alignment.warnings.size(), 1u);
+  EXPECT_NE(alignment.warnings[0].find("21 camera centres lie nearly on one "
+                                       "line (RMS 0.0"),
+            std::string::npos)
+      << alignment.warnings[0];
+  EXPECT_NE(alignment.warnings[0].find("--Nav.use_attitude 1"),
+            std::string::npos);
+  EXPECT_EQ(ModelAlignmentJson(alignment)["warnings"].size(), 1u);
 }
 
 TEST(ModelAlignment, TooFewCommonImagesIsAnError) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
@@ -46,6 +47,20 @@ TrackAxis TrackAxisFromCentres(const std::vector<Eigen::Vector3d>& centres) {
   axis.rms_along = std::sqrt(solver.eigenvalues()(2) / n);
   axis.rms_across = std::sqrt(std::max(0.0, solver.eigenvalues()(1)) / n);
   return axis;
+}
+
+std::optional<std::string> DescribeOneLineTrack(
+    const std::vector<Eigen::Vector3d>& centres) {
+  if (centres.size() < 3) return std::nullopt;
+  const TrackAxis track = TrackAxisFromCentres(centres);
+  if (!(track.rms_across < kMinAcrossAlongSpread * track.rms_along)) {
+    return std::nullopt;
+  }
+  return fmt::format(
+      "{} camera centres lie nearly on one line (RMS {:.3g} m across it, "
+      "{:.3g} m along, axis [{:.2f}, {:.2f}, {:.2f}])",
+      centres.size(), track.rms_across, track.rms_along, track.direction.x(),
+      track.direction.y(), track.direction.z());
 }
 
 namespace {

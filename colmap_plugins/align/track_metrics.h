@@ -11,6 +11,8 @@
 #pragma once
 
 #include <array>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -37,6 +39,20 @@ struct TrackAxis {
 // from the first centre to the last. Throws uw::Error for fewer than 2
 // centres or centres that all coincide.
 TrackAxis TrackAxisFromCentres(const std::vector<Eigen::Vector3d>& centres);
+
+// Across / along below this: centres like a single survey pass (the true
+// centres of the breakwater's and canyon's plans: 0.012-0.018; the scarp's
+// two stacked lines: 0.019; the seafloor's and vent's lawnmowers:
+// 0.67-0.77). A similarity to positions of such centres fixes the rotation
+// about the line only through their small scatter off it.
+constexpr double kMinAcrossAlongSpread = 0.1;
+
+// "N camera centres lie nearly on one line (RMS a m across it, b m along,
+// axis [x, y, z])" when at least 3 centres do (rms_across below
+// kMinAcrossAlongSpread x rms_along), for the warnings of the adjuster and
+// of the alignment; none otherwise.
+std::optional<std::string> DescribeOneLineTrack(
+    const std::vector<Eigen::Vector3d>& centres);
 
 struct SegmentScale {
   double begin = 0.0;  // along-track interval, m

@@ -13,29 +13,21 @@ namespace uw {
 std::optional<std::string> TrackLineWarning(
     const Reconstruction& model, const std::vector<ImagePosePrior>& priors,
     bool attitude_priors) {
-  if (priors.size() < 3 || attitude_priors) return std::nullopt;
+  if (attitude_priors) return std::nullopt;
   std::vector<Eigen::Vector3d> centres;
   for (const ImagePosePrior& prior : priors) {
     if (const Image* image = model.FindImage(prior.image_id)) {
       centres.push_back(image->ProjectionCenter());
     }
   }
-  if (centres.size() < 3) return std::nullopt;
-  const TrackAxis track = TrackAxisFromCentres(centres);
-  if (!(track.rms_across < kMinAcrossAlongSpread * track.rms_along)) {
-    return std::nullopt;
-  }
-  return fmt::format(
-      "the {} images with navigation positions lie nearly on one line (RMS "
-      "{:.3g} m across it, {:.3g} m along, axis [{:.2f}, {:.2f}, {:.2f}]): "
-      "without attitude priors only that scatter fixes the model's rotation "
-      "about "
-      "the line, so that rotation (and the world position of everything "
-      "off the line) can be several of its stated sigmas off; shape and "
-      "scale are not affected. Add the log's roll and pitch with "
-      "--Nav.use_attitude 1",
-      centres.size(), track.rms_across, track.rms_along, track.direction.x(),
-      track.direction.y(), track.direction.z());
+  const std::optional<std::string> line = DescribeOneLineTrack(centres);
+  if (!line) return std::nullopt;
+  return "position priors on one pass: the " + *line +
+         ": without attitude priors only that scatter fixes the model's "
+         "rotation about the line, so that rotation (and the world position "
+         "of everything off the line) can be several of its stated sigmas "
+         "off; shape and scale are not affected. Add the log's roll and "
+         "pitch with --Nav.use_attitude 1";
 }
 
 double MedianRotationSigmaDeg(const BundleCovariance& covariance) {

@@ -31,11 +31,6 @@
 
 namespace uw {
 
-// Across / along below this: a track like a single pass (the true centres
-// of the breakwater's and canyon's plans: 0.012-0.018; the scarp's two
-// stacked lines: 0.019; the seafloor's and vent's lawnmowers: 0.67-0.77).
-constexpr double kMinAcrossAlongSpread = 0.1;
-
 // Above this median camera rotation sigma (deg) the priors' rotation is
 // too weak for the linearisation: the vent's 8.9 failed, the seafloor
 // survey's 4.3 held (NEES 3.06).

@@ -62,7 +62,7 @@ TEST(TrackLine, WarnsForASinglePassWithoutAttitude) {
   const TrackModel pass = ModelOf(Track(1, 0.0, 0.06));
   const auto warning = TrackLineWarning(pass.model, pass.priors, false);
   ASSERT_TRUE(warning);
-  EXPECT_NE(warning->find("21 images"), std::string::npos) << *warning;
+  EXPECT_NE(warning->find("21 camera centres"), std::string::npos) << *warning;
   EXPECT_NE(warning->find("nearly on one line"), std::string::npos);
   EXPECT_NE(warning->find("--Nav.use_attitude 1"), std::string::npos);
   // Attitude priors hold the rotation; a lawnmower's lines hold it too.

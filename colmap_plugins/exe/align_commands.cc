@@ -70,6 +70,9 @@ void RunModelAligner(const ModelAlignerOptions& options) {
   fmt::print("Model: {} ({} images, {} points)\n{}", options.input_path,
              model.Images().size(), model.Points3D().size(),
              FormatModelAlignment(alignment));
+  for (const std::string& warning : alignment.warnings) {
+    fmt::print(stderr, "WARNING: {}\n", warning);
+  }
   TransformReconstruction(alignment.similarity.b_from_a, &model);
   WriteModel(model, options.output_path, files.format);
   fmt::print("Wrote {} ({})\n", options.output_path,

@@ -1,8 +1,11 @@
 #include "colmap_plugins/exe/ba_commands.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "colmap_plugins/ba/covariance_files.h"
 #include "colmap_plugins/exe/nav_flags.h"
@@ -111,11 +114,13 @@ void AddCovarianceFlags(CommandLine* cli, BundleCovarianceOptions* options) {
            "Seed of the draws (they depend on it alone)");
 }
 
-// The covariance of `model`, its summary and warnings printed.
-BundleCovariance EstimateCovariance(const NavBundleAdjustmentOptions& adjuster,
-                                    const NavInputs& inputs,
-                                    const BundleCovarianceOptions& options,
-                                    const Reconstruction& model) {
+// The covariance of `model`, its summary and warnings printed (but those
+// in `printed`: the adjuster's own, which the covariance repeats for its
+// json).
+BundleCovariance EstimateCovariance(
+    const NavBundleAdjustmentOptions& adjuster, const NavInputs& inputs,
+    const BundleCovarianceOptions& options, const Reconstruction& model,
+    const std::vector<std::string>& printed = {}) {
   PrintLine("Covariance: " + std::to_string(model.Images().size()) +
             " images, " + std::to_string(model.Points3D().size()) +
             " points, gauge " + CovarianceGaugeName(options.gauge));
@@ -145,7 +150,9 @@ BundleCovariance EstimateCovariance(const NavBundleAdjustmentOptions& adjuster,
             << covariance.factor_time_s << " s, sparse inverse "
             << covariance.inverse_time_s << " s)\n";
   for (const std::string& warning : covariance.warnings) {
-    std::cerr << "WARNING: " << warning << "\n";
+    if (std::find(printed.begin(), printed.end(), warning) == printed.end()) {
+      std::cerr << "WARNING: " << warning << "\n";
+    }
   }
   return covariance;
 }
@@ -209,7 +216,8 @@ void RunBundleAdjuster(const BundleAdjusterOptions& options) {
         LoadNavInputs(adjustment.priors, model, adjustment.input_path);
     if (adjustment.strategy == NavStrategy::kPosterior) inputs.priors.clear();
     covariance = EstimateCovariance(adjustment.adjuster, inputs,
-                                    options.covariance_options, model);
+                                    options.covariance_options, model,
+                                    result.report.warnings);
   }
   const fs::path output(options.output_path);
   WriteModel(model, output, files.format);

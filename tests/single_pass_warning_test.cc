@@ -1,0 +1,120 @@
+// The breakwater's lawnmower plan is one pass: 21 camera centres 6 cm off an
+// 11 m line. Positions alone fix a model's rotation about such a line only
+// through that scatter (colmap_plugins/ba/track_line.h), and every command
+// that places a model by them says so, once, where the user reads it: on
+// stderr and in its json.
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "common/util/file.h"
+#include "common/util/subprocess.h"
+#include "tests/support/process.h"
+#include "tests/support/uwsim_survey.h"
+
+namespace uw {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::FreshTestDir;
+using testing::Quoted;
+using testing::SurveyMountFlags;
+
+const fs::path kPlanDir = fs::path(UW_PLANS_DIR) / "breakwater";
+
+size_t Count(const std::string& text, const std::string& what) {
+  size_t count = 0;
+  for (size_t at = text.find(what); at != std::string::npos;
+       at = text.find(what, at + 1)) {
+    ++count;
+  }
+  return count;
+}
+
+nlohmann::json ReadJson(const fs::path& path) {
+  return nlohmann::json::parse(ReadFileToString(path));
+}
+
+class SinglePass : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = FreshTestDir(
+        "uw_single_pass_" +
+        std::string(
+            ::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    // Tracks in a frame of their own (scale 0.3-3), as a mapper leaves them.
+    const auto observed = RunProcess(
+        Quoted(fs::path(UW_BIN_DIR) / "uwsim") + " observe --sim " +
+            Quoted(kPlanDir) + " --output_path " + Quoted(dir_ / "tracks") +
+            " --num_points 2500 --init perturbed --seed 3",
+        true);
+    ASSERT_EQ(observed.exit_code, 0) << observed.output;
+  }
+
+  std::string Uwcolmap(const std::string& command,
+                       const std::string& flags) const {
+    return Quoted(fs::path(UW_BIN_DIR) / "uwcolmap") + " " + command +
+           " --input_path " + Quoted(dir_ / "tracks") + " --nav " +
+           Quoted(kPlanDir / "nav.csv") + SurveyMountFlags(kPlanDir) + flags;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(SinglePass, TheAdjusterWarnsOnceAndTheAttitudeSilencesIt) {
+  const auto adjusted = RunProcess(
+      Uwcolmap("bundle_adjuster",
+               " --output_path " + Quoted(dir_ / "ba") + " --BA.covariance 1"),
+      true);
+  ASSERT_EQ(adjusted.exit_code, 0) << adjusted.output;
+  // Once, though the adjuster and the covariance both carry it.
+  EXPECT_EQ(Count(adjusted.output,
+                  "WARNING: position priors on one pass: "
+                  "the 21 camera centres lie nearly on one "
+                  "line"),
+            1u)
+      << adjusted.output;
+  for (const fs::path& json :
+       {dir_ / "ba" / "ba_report.json",
+        dir_ / "ba" / "covariance" / "covariance.json"}) {
+    const auto warnings =
+        ReadJson(json).at("warnings").get<std::vector<std::string>>();
+    EXPECT_EQ(std::count_if(warnings.begin(), warnings.end(),
+                            [](const std::string& warning) {
+                              return warning.find("nearly on one line") !=
+                                     std::string::npos;
+                            }),
+              1)
+        << json;
+  }
+
+  const auto with_attitude =
+      RunProcess(Uwcolmap("bundle_adjuster", " --output_path " +
+                                                 Quoted(dir_ / "ba_attitude") +
+                                                 " --Nav.use_attitude 1"),
+                 true);
+  ASSERT_EQ(with_attitude.exit_code, 0) << with_attitude.output;
+  EXPECT_EQ(Count(with_attitude.output, "nearly on one line"), 0u)
+      << with_attitude.output;
+}
+
+TEST_F(SinglePass, TheAlignerWarns) {
+  const auto aligned = RunProcess(
+      Uwcolmap("model_aligner", " --output_path " + Quoted(dir_ / "aligned") +
+                                    " --transform_path " +
+                                    Quoted(dir_ / "sim3.json")),
+      true);
+  ASSERT_EQ(aligned.exit_code, 0) << aligned.output;
+  EXPECT_EQ(Count(aligned.output,
+                  "WARNING: the aligned 21 camera centres lie "
+                  "nearly on one line"),
+            1u)
+      << aligned.output;
+  EXPECT_EQ(ReadJson(dir_ / "sim3.json").at("warnings").size(), 1u);
+}
+
+}  // namespace
+}  // namespace uw
