@@ -19,7 +19,8 @@ const fs::path kSeafloorDir = fs::path(UW_SURVEY_DIR) / "sim";
 constexpr int kSeafloorPoints = 4000;
 
 TEST(CovarianceNees, FusedAdjustmentsOfTheUwsimSurveyAreCalibrated) {
-  const Nees nees = MeanNees(kSeafloorDir, NeesGauge::kPriors, kSeafloorPoints);
+  const Nees nees =
+      MeanNees(kSeafloorDir, {NeesGauge::kPriors, kSeafloorPoints});
   std::cout << NeesFigures("fused re-adjustments of the uwsim survey", nees)
             << "\n";
   ExpectCalibrated(nees);
@@ -28,7 +29,7 @@ TEST(CovarianceNees, FusedAdjustmentsOfTheUwsimSurveyAreCalibrated) {
 // Prior-free: no navigation, COLMAP's held gauge; the focal length and k1
 // self-calibrated from the images alone, as bundle_adjuster does by default.
 TEST(CovarianceNees, PriorFreeAdjustmentsOfTheUwsimSurveyAreCalibrated) {
-  const Nees nees = MeanNees(kSeafloorDir, NeesGauge::kHeld, kSeafloorPoints);
+  const Nees nees = MeanNees(kSeafloorDir, {NeesGauge::kHeld, kSeafloorPoints});
   std::cout << NeesFigures(
                    "prior-free re-adjustments of the uwsim survey (held gauge)",
                    nees)

@@ -16,9 +16,10 @@
 // centres (1.0 x 1.3 m RMS, 0.85 m horizontal navigation noise) fix the
 // heading to about 9 deg, and over 100 fused re-adjustments the points'
 // NEES was 3.71 +- 0.32 against 3 (poses 6.19), where the same plan
-// without priors (held gauge 2.81, free network 3.04) and with attitude
-// priors (2.69) holds: a rotation fit that weak is not Gaussian in its
-// tails, and the world-frame sigmas come out too small.
+// without priors (held gauge 2.81, free network 3.04), with attitude
+// priors (2.69) and with a 0.2 m navigation (3.19, heading to 2 deg) holds:
+// a datum that weak (its scale too: 7 % RMS) is not Gaussian, and the
+// world-frame sigmas come out too small.
 #pragma once
 
 #include <optional>
