@@ -51,10 +51,15 @@
 #             --laser_database DB: the database with SIM_DIR's laser images
 #             (scripts/add_laser_images.sh) for the whole chain, with
 #             --DenseMesher.max_image_size N (512), --mc N (5000) and
-#             --Covariance.samples N (200); any
+#             --Covariance.samples N (200); --Nav.use_attitude 1: the
+#             log's roll, pitch and yaw as priors of the prior-strategy
+#             rows (a single pass needs them: docs/uwcolmap.md); any
 #             other flag describes the camera on the vehicle and goes to
 #             uwcolmap (--mount, --lever_arm, --boresight, --time_offset,
 #             --image_times)
+#
+# A step's WARNING lines (e.g. camera centres on one line) are repeated on
+# stderr with the step's name.
 #
 # Environment: COLMAP, UWCOLMAP, LASERSCALE (programs; default colmap on
 # PATH, build/bin/uwcolmap and build/bin/laserscale), NAV_WEIGHTS (e.g.
@@ -80,6 +85,7 @@ laserscale=${LASERSCALE:-$root/build/bin/laserscale}
 read -r -a nav_weights <<< "${NAV_WEIGHTS:-auto}"
 
 ba_flags=()
+prior_flags=()
 mount_flags=()
 database=""
 laser_database=""
@@ -93,6 +99,7 @@ while [[ $# -gt 0 ]]; do
   fi
   case $1 in
     --BundleAdjustment.*) ba_flags+=("$1" "$2") ;;
+    --Nav.use_attitude) prior_flags+=("$1" "$2") ;;
     --database_path) database=$2 ;;
     --laser_database) laser_database=$2 ;;
     --DenseMesher.max_image_size) max_image_size=$2 ;;
@@ -145,6 +152,7 @@ run() {  # run NAME COMMAND...: keep the step's log and time, show it on failure
     exit 1
   fi
   echo "$name,$(seconds_since "$step_start")" >> "$out/timings.csv"
+  grep '^WARNING:' "$out/logs/$name.log" | sed "s/^/$name: /" >&2 || true
 }
 
 # colmap's inlier threshold: 3 x the navigation's RMS 3D sigma
@@ -269,7 +277,7 @@ for weight in "${nav_weights[@]}"; do
   run "ours_prior_$weight" "$uwcolmap" bundle_adjuster --input_path "$model" \
     --output_path "$out/ours_prior_$weight" --nav "$sim/nav.csv" \
     "${mount_flags[@]}" --Nav.strategy prior --Nav.weight "$weight" \
-    "${ba_flags[@]}" "${weight_covariance[@]}"
+    "${prior_flags[@]}" "${ba_flags[@]}" "${weight_covariance[@]}"
   seconds=$(seconds_since "$start")
   # The weight used: the noise-level estimate, or the L-curve's choice.
   chosen=$(sed -n 's/.*lambda = \([^ ]*\) px\/m.*/ = \1 px\/m/p' \

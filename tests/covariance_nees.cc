@@ -167,11 +167,6 @@ constexpr double kAngleBinEdgesDeg[] = {5.0, 15.0};
 
 }  // namespace
 
-int NeesTrials() {
-  const char* trials = std::getenv("UW_NEES_TRIALS");
-  return trials != nullptr ? std::stoi(trials) : 100;
-}
-
 std::string NeesFigures(const std::string& what, const Nees& nees) {
   std::ostringstream text;
   text << "[ figures ] " << nees.num_trials << " " << what
@@ -202,7 +197,9 @@ Nees MeanNees(const fs::path& sim_dir, const NeesOptions& options) {
   size_t num_points = 0;
   std::vector<double> bin_sums(std::size(kAngleBinEdgesDeg) + 1, 0.0);
   std::vector<size_t> bin_counts(bin_sums.size(), 0);
-  const int num_trials = NeesTrials();
+  const char* trials_override = std::getenv("UW_NEES_TRIALS");
+  const int num_trials = trials_override != nullptr ? std::stoi(trials_override)
+                                                    : options.num_trials;
   std::vector<double> trial_pose_means;
   std::vector<double> trial_point_means;
   int num_warned = 0;

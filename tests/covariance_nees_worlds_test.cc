@@ -19,15 +19,22 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The seafloor survey's density, 120 points per image (4000 points on the
+// scarp's 268 images would leave images that see one), and 400 trials, 100
+// on the scarp (a trial of its 268 images takes a minute).
+NeesOptions PlanOptions(const fs::path& sim_dir, NeesGauge gauge) {
+  const int num_images =
+      static_cast<int>(ReadModel(sim_dir / "truth").Images().size());
+  NeesOptions options;
+  options.gauge = gauge;
+  options.points_observed = 120 * num_images;
+  options.num_trials = num_images > 100 ? 100 : 400;
+  return options;
+}
+
 class CovarianceNeesOnWorlds : public ::testing::TestWithParam<std::string> {
  protected:
   fs::path SimDir() const { return fs::path(UW_PLANS_DIR) / GetParam(); }
-  // The seafloor survey's density, 120 points per image (4000 points on
-  // the scarp's 268 images would leave images that see one).
-  int NumPoints() const {
-    return 120 *
-           static_cast<int>(ReadModel(SimDir() / "truth").Images().size());
-  }
 };
 
 // The breakwater's, canyon's and scarp's plans are single passes (or two
@@ -41,8 +48,7 @@ bool OnOneLine(const std::string& world) { return world != "vent"; }
 // a datum too weak for the linearisation (points 3.71 over 100 trials),
 // and every trial's covariance says so (WeakRotationWarning).
 TEST_P(CovarianceNeesOnWorlds, FusedAdjustmentsAreCalibratedOrWarn) {
-  NeesOptions options;
-  options.points_observed = NumPoints();
+  NeesOptions options = PlanOptions(SimDir(), NeesGauge::kPriors);
   options.attitude = OnOneLine(GetParam());
   const Nees nees = MeanNees(SimDir(), options);
   std::cout << NeesFigures("fused re-adjustments of the " + GetParam() +
@@ -59,9 +65,7 @@ TEST_P(CovarianceNeesOnWorlds, FusedAdjustmentsAreCalibratedOrWarn) {
 // warning, and calibrated.
 TEST(CovarianceNeesOnTheVent, FusedWithATighterNavigationIsCalibrated) {
   const fs::path sim_dir = fs::path(UW_PLANS_DIR) / "vent";
-  NeesOptions options;
-  options.points_observed =
-      120 * static_cast<int>(ReadModel(sim_dir / "truth").Images().size());
+  NeesOptions options = PlanOptions(sim_dir, NeesGauge::kPriors);
   options.horizontal_sigma_m = 0.2;
   const Nees nees = MeanNees(sim_dir, options);
   std::cout << NeesFigures(
@@ -73,7 +77,7 @@ TEST(CovarianceNeesOnTheVent, FusedWithATighterNavigationIsCalibrated) {
 }
 
 TEST_P(CovarianceNeesOnWorlds, PriorFreeAdjustmentsAreCalibrated) {
-  const Nees nees = MeanNees(SimDir(), {NeesGauge::kHeld, NumPoints()});
+  const Nees nees = MeanNees(SimDir(), PlanOptions(SimDir(), NeesGauge::kHeld));
   std::cout << NeesFigures("prior-free re-adjustments of the " + GetParam() +
                                " plan (held gauge)",
                            nees)
@@ -84,7 +88,8 @@ TEST_P(CovarianceNeesOnWorlds, PriorFreeAdjustmentsAreCalibrated) {
 // The free network (minimum trace, what photogrammetry reports without
 // control) against errors under the same inner constraints.
 TEST_P(CovarianceNeesOnWorlds, FreeNetworkAdjustmentsAreCalibrated) {
-  const Nees nees = MeanNees(SimDir(), {NeesGauge::kFreeNetwork, NumPoints()});
+  const Nees nees =
+      MeanNees(SimDir(), PlanOptions(SimDir(), NeesGauge::kFreeNetwork));
   std::cout << NeesFigures(
                    "free-network re-adjustments of the " + GetParam() + " plan",
                    nees)

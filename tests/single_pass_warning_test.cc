@@ -116,5 +116,29 @@ TEST_F(SinglePass, TheAlignerWarns) {
   EXPECT_EQ(ReadJson(dir_ / "sim3.json").at("warnings").size(), 1u);
 }
 
+// The README's comparison: each step's warnings on stderr with its name,
+// and --Nav.use_attitude 1 for the fused rows, which then need no warning,
+// while the rows placed by positions alone keep theirs.
+TEST_F(SinglePass, CompareWithColmapRepeatsTheWarningsAndTakesTheAttitude) {
+  const auto compared = RunProcess(
+      "UWCOLMAP=" + Quoted(fs::path(UW_BIN_DIR) / "uwcolmap") + " bash " +
+          Quoted(fs::path(UW_SOURCE_DIR) / "scripts" /
+                 "compare_with_colmap.sh") +
+          " " + Quoted(kPlanDir) + " " + Quoted(dir_ / "tracks") + " " +
+          Quoted(dir_ / "compare") + SurveyMountFlags(kPlanDir) +
+          " --Nav.use_attitude 1",
+      true);
+  ASSERT_EQ(compared.exit_code, 0) << compared.output;
+  for (const char* step :
+       {"ours_model_aligner: WARNING: the aligned 21 camera centres",
+        "ours_posterior: WARNING: position priors on one pass"}) {
+    EXPECT_NE(compared.output.find(step), std::string::npos) << step << "\n"
+                                                             << compared.output;
+  }
+  EXPECT_EQ(compared.output.find("ours_prior_auto: WARNING: position priors"),
+            std::string::npos)
+      << compared.output;
+}
+
 }  // namespace
 }  // namespace uw
