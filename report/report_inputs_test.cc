@@ -83,7 +83,7 @@ TEST_F(ReportInputsTest, ReadsWhatTheReportShows) {
   EXPECT_EQ(covariance.num_weak_points, 3);
   EXPECT_EQ(covariance.num_samples, 200);
   EXPECT_EQ(covariance.log_scale_sigma, 0.0705);
-  EXPECT_EQ(covariance.warnings.size(), 1u);
+  EXPECT_EQ(covariance.warnings.size(), 2u);
   EXPECT_EQ(covariance.cameras.NumRows(), 4u);
   EXPECT_TRUE(covariance.map.has_value());
 

@@ -683,6 +683,11 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
                          : std::string()) +
         ".</p>\n";
     for (const std::string& warning : c.warnings) {
+      // The adjuster's own (a single pass) are shown with the navigation.
+      if (ba && std::find(ba->warnings.begin(), ba->warnings.end(), warning) !=
+                    ba->warnings.end()) {
+        continue;
+      }
       uncertainty_html += "<p class=\"bad\">" + HtmlEscape(warning) + "</p>\n";
     }
     if (c.num_samples > 0) {

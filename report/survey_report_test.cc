@@ -78,10 +78,13 @@ TEST_F(SurveyReportTest, WritesEverySectionFromEveryInput) {
         "200 draws of its covariance", "calibration 64 %, model 36 %",
         "z = +4.25: beyond 3 &sigma;",
         // The adjuster's warnings.
-        "<p class=\"bad\">position priors on one pass: the 4 camera "
+        "<p class=\"bad\">navigation positions on one pass: the 4 camera "
         "centres lie nearly on one line</p>"}) {
     EXPECT_NE(html.find(text), std::string::npos) << text;
   }
+  // The adjuster's warning, which the covariance repeats, shown once.
+  const std::string one_pass = "navigation positions on one pass";
+  EXPECT_EQ(html.find(one_pass), html.rfind(one_pass));
   // The least certain image first.
   const size_t worst = html.find("Least certain images");
   ASSERT_NE(worst, std::string::npos);

@@ -97,7 +97,7 @@ inline SurveyReportInputs WriteTestReportInputs(
   {"name": "1.png", "dive": 1, "error_m": [0, -0.5, 0], "error_norm_m": 0.5, "mahalanobis": 1.0},
   {"name": "2.png", "dive": 2, "error_m": [0, -0.5, 0], "error_norm_m": 0.5, "mahalanobis": 1.0},
   {"name": "3.png", "dive": 2, "error_m": [0, 0.5, 0], "error_norm_m": 0.5, "mahalanobis": 3.5}],
- "warnings": ["position priors on one pass: the 4 camera centres lie nearly on one line"]}
+ "warnings": ["navigation positions on one pass: the 4 camera centres lie nearly on one line"]}
 )");
 
   inputs.laser_report_dir = dir / "laser";
@@ -155,7 +155,8 @@ inline SurveyReportInputs WriteTestReportInputs(
                                      "max": 0.056}},
  "samples": {"count": 200, "log_scale_sigma": 0.0705,
              "log_scale_meaning": "the navigation's own scale uncertainty"},
- "warnings": ["image 3.png sees 4 points only"]})");
+ "warnings": ["image 3.png sees 4 points only",
+              "navigation positions on one pass: the 4 camera centres lie nearly on one line"]})");
   WriteTestText(inputs.covariance_dir / "cameras.csv",
                 "image_id,name,held,num_points,sigma_x_m,sigma_y_m,sigma_z_m,"
                 "sigma_position_m,sigma_rotation_deg\n"

@@ -109,6 +109,11 @@ while [[ $# -gt 0 ]]; do
   esac
   shift 2
 done
+# The fused rows' labels say when the attitude was fused too.
+attitude_label=""
+if [[ ${#prior_flags[@]} -gt 0 ]]; then
+  attitude_label=" (${prior_flags[*]})"
+fi
 # With the whole chain, the fused model's covariance and joint draws of it,
 # which the laser scale's Monte Carlo re-samples the model with.
 covariance_flags=()
@@ -282,7 +287,7 @@ for weight in "${nav_weights[@]}"; do
   # The weight used: the noise-level estimate, or the L-curve's choice.
   chosen=$(sed -n 's/.*lambda = \([^ ]*\) px\/m.*/ = \1 px\/m/p' \
     "$out/logs/ours_prior_$weight.log" | tail -n 1)
-  add_row "ours --Nav.strategy prior --Nav.weight $weight$chosen" \
+  add_row "ours --Nav.strategy prior --Nav.weight $weight$chosen$attitude_label" \
     "$out/ours_prior_$weight" "$seconds"
 done
 
@@ -357,7 +362,7 @@ if [[ -n "$laser_database" ]]; then
   else
     chain "colmap BA + model_aligner (vehicle positions)" "$out/colmap_vehicle"
   fi
-  chain "ours --Nav.strategy prior --Nav.weight ${nav_weights[0]}" \
+  chain "ours --Nav.strategy prior --Nav.weight ${nav_weights[0]}$attitude_label" \
     "$out/ours_prior_${nav_weights[0]}"
   {
     echo "method,laser_scale,ci95_low,ci95_high,true_scale,scale_error_percent,truth_in_ci95,accepted_images,laser_images,mesh_median_m,mesh_median_percent_of_range,mesh_coverage_percent,dense_s,laser_s,model_draws,features_share_percent,spots_share_percent,calibration_share_percent,model_share_percent,navigation_z"

@@ -1,4 +1,4 @@
-// Issue 16, acceptance 2 (label heavy): is the covariance calibrated? 100
+// Issue 16, acceptance 2 (label heavy): is the covariance calibrated? 400
 // re-adjustments of the rendered uwsim seafloor survey of the integration
 // tests, with the navigation fused (gauge: the priors, so the errors are
 // absolute) and prior-free (COLMAP's held gauge); tests/covariance_nees.h.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -72,7 +73,7 @@ TEST_F(SinglePass, TheAdjusterWarnsOnceAndTheAttitudeSilencesIt) {
   ASSERT_EQ(adjusted.exit_code, 0) << adjusted.output;
   // Once, though the adjuster and the covariance both carry it.
   EXPECT_EQ(Count(adjusted.output,
-                  "WARNING: position priors on one pass: "
+                  "WARNING: navigation positions on one pass: "
                   "the 21 camera centres lie nearly on one "
                   "line"),
             1u)
@@ -131,13 +132,17 @@ TEST_F(SinglePass, CompareWithColmapRepeatsTheWarningsAndTakesTheAttitude) {
   ASSERT_EQ(compared.exit_code, 0) << compared.output;
   for (const char* step :
        {"ours_model_aligner: WARNING: the aligned 21 camera centres",
-        "ours_posterior: WARNING: position priors on one pass"}) {
+        "ours_posterior: WARNING: navigation positions on one pass"}) {
     EXPECT_NE(compared.output.find(step), std::string::npos) << step << "\n"
                                                              << compared.output;
   }
-  EXPECT_EQ(compared.output.find("ours_prior_auto: WARNING: position priors"),
-            std::string::npos)
+  EXPECT_EQ(
+      compared.output.find("ours_prior_auto: WARNING: navigation positions"),
+      std::string::npos)
       << compared.output;
+  EXPECT_NE(ReadFileToString(dir_ / "compare" / "table.txt")
+                .find("(--Nav.use_attitude 1)"),
+            std::string::npos);
 }
 
 }  // namespace

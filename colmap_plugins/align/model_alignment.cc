@@ -201,11 +201,8 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
   if (const auto line = DescribeOneLineTrack(centres)) {
     alignment.warnings.push_back(
         "the aligned " + *line +
-        ": only that scatter fixes the model's rotation about the line, so "
-        "that rotation (and the position of everything off the line) can be "
-        "several sigmas off; shape and scale are not affected. bundle_adjuster "
-        "--nav ... --Nav.use_attitude 1 fixes it with the log's roll and "
-        "pitch");
+        ". bundle_adjuster --nav ... --Nav.use_attitude 1 fixes it with the "
+        "log's roll and pitch");
   }
   return alignment;
 }

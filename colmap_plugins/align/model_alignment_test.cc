@@ -138,9 +138,9 @@ TEST(ModelAlignment, NavigationRowsOfOtherImagesAreNoError) {
   EXPECT_TRUE(json["warnings"].empty());
 }
 
-// A single survey pass: 21 centres 4 cm RMS off a 10 m line. The references'
-// noise across it fixes the model's rotation about the line, which a user
-// aligning such a model must be told.
+// A single survey pass: 21 centres 4 cm RMS off a 10 m line. Only that
+// scatter fixes the model's rotation about the line (against the noise of
+// real references), which a user aligning such a model must be told.
 TEST(ModelAlignment, WarnsWhenTheCentresLieOnOneLine) {
   const fs::path dir = testing::FreshTestDir("uw_model_alignment_line");
   std::vector<Eigen::Vector3d> centres;

@@ -58,7 +58,10 @@ std::optional<std::string> DescribeOneLineTrack(
   }
   return fmt::format(
       "{} camera centres lie nearly on one line (RMS {:.3g} m across it, "
-      "{:.3g} m along, axis [{:.2f}, {:.2f}, {:.2f}])",
+      "{:.3g} m along, axis [{:.2f}, {:.2f}, {:.2f}]): positions alone fix "
+      "the model's rotation about the line only through that scatter, so "
+      "that rotation (and the position of everything off the line) can be "
+      "several of its sigmas off; shape and scale are not affected",
       centres.size(), track.rms_across, track.rms_along, track.direction.x(),
       track.direction.y(), track.direction.z());
 }

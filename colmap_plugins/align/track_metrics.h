@@ -48,9 +48,9 @@ TrackAxis TrackAxisFromCentres(const std::vector<Eigen::Vector3d>& centres);
 constexpr double kMinAcrossAlongSpread = 0.1;
 
 // "N camera centres lie nearly on one line (RMS a m across it, b m along,
-// axis [x, y, z])" when at least 3 centres do (rms_across below
-// kMinAcrossAlongSpread x rms_along), for the warnings of the adjuster and
-// of the alignment; none otherwise.
+// axis [x, y, z]): positions alone fix ... not affected" when at least 3
+// centres do (rms_across below kMinAcrossAlongSpread x rms_along), for the
+// warnings of the adjuster and of the alignment; none otherwise.
 std::optional<std::string> DescribeOneLineTrack(
     const std::vector<Eigen::Vector3d>& centres);
 

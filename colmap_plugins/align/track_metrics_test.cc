@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -34,6 +37,30 @@ TEST(TrackAxis, PrincipalDirectionFromFirstToLast) {
               -axis.AlongTrack(centres.back()), 0.1);
   EXPECT_THROW(TrackAxisFromCentres({{1, 2, 3}}), Error);
   EXPECT_THROW(TrackAxisFromCentres({{1, 2, 3}, {1, 2, 3}}), Error);
+}
+
+// A pass 5 cm off its 11 m line is one; a lawnmower of two lines 1 m
+// apart, and fewer than 3 centres, are not.
+TEST(TrackAxis, DescribesCentresOnOneLine) {
+  std::vector<Eigen::Vector3d> pass, lawnmower;
+  for (int k = 0; k < 12; ++k) {
+    // Signs + - - + + - - ...: no correlation with k, the axis stays x.
+    pass.emplace_back(k, k % 4 == 0 || k % 4 == 3 ? 0.05 : -0.05, 0.0);
+    lawnmower.emplace_back(k, 0.0, 0.0);
+    lawnmower.emplace_back(k, 1.0, 0.0);
+  }
+  const std::optional<std::string> line = DescribeOneLineTrack(pass);
+  ASSERT_TRUE(line);
+  EXPECT_EQ(line->rfind("12 camera centres lie nearly on one line (RMS 0.05 "
+                        "m across it, 3.45 m along, axis [1.00, ",
+                        0),
+            0u)
+      << *line;
+  EXPECT_NE(line->find("]): positions alone fix the model's rotation about "
+                       "the line only through that scatter"),
+            std::string::npos);
+  EXPECT_FALSE(DescribeOneLineTrack(lawnmower));
+  EXPECT_FALSE(DescribeOneLineTrack({pass[0], pass[1]}));
 }
 
 TEST(PerSegmentScale, UniformlyScaledTrackHasUniformScale) {

@@ -22,12 +22,9 @@ std::optional<std::string> TrackLineWarning(
   }
   const std::optional<std::string> line = DescribeOneLineTrack(centres);
   if (!line) return std::nullopt;
-  return "position priors on one pass: the " + *line +
-         ": without attitude priors only that scatter fixes the model's "
-         "rotation about the line, so that rotation (and the world position "
-         "of everything off the line) can be several of its stated sigmas "
-         "off; shape and scale are not affected. Add the log's roll and "
-         "pitch with --Nav.use_attitude 1";
+  return "navigation positions on one pass: the " + *line +
+         ". Fuse the log's roll and pitch too (--Nav.strategy prior "
+         "--Nav.use_attitude 1)";
 }
 
 double MedianRotationSigmaDeg(const BundleCovariance& covariance) {
