@@ -145,5 +145,33 @@ TEST_F(SinglePass, CompareWithColmapRepeatsTheWarningsAndTakesTheAttitude) {
             std::string::npos);
 }
 
+// The scarp's two stacked lines with 120 tracked points per image (as the
+// NEES runs observe them): the last images of a line share only two-view
+// points, so the images leave their distances free (scale_transfer.h), and
+// the adjuster names them.
+TEST(SinglePassScarp, TheAdjusterNamesImagesWithoutScaleTransfer) {
+  const fs::path plan = fs::path(UW_PLANS_DIR) / "scarp";
+  const fs::path dir = FreshTestDir("uw_single_pass_scarp");
+  const auto observed =
+      RunProcess(Quoted(fs::path(UW_BIN_DIR) / "uwsim") + " observe --sim " +
+                     Quoted(plan) + " --output_path " + Quoted(dir / "tracks") +
+                     " --num_points 32160 --seed 1001",
+                 true);
+  ASSERT_EQ(observed.exit_code, 0) << observed.output;
+  // The warning needs no converged adjustment: 10 iterations.
+  const auto adjusted = RunProcess(
+      Quoted(fs::path(UW_BIN_DIR) / "uwcolmap") +
+          " bundle_adjuster --input_path " + Quoted(dir / "tracks") +
+          " --output_path " + Quoted(dir / "ba") + " --nav " +
+          Quoted(plan / "nav.csv") + SurveyMountFlags(plan) +
+          " --Nav.use_attitude 1 --BundleAdjustment.max_num_iterations 10",
+      true);
+  ASSERT_EQ(adjusted.exit_code, 0) << adjusted.output;
+  EXPECT_NE(adjusted.output.find("images share no point that 3 images see"),
+            std::string::npos)
+      << adjusted.output;
+  EXPECT_NE(adjusted.output.find("00132.png"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace uw

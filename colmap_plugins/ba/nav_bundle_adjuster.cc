@@ -18,6 +18,7 @@
 #include "colmap_plugins/ba/nav_prior.h"
 #include "colmap_plugins/ba/reprojection_error.h"
 #include "colmap_plugins/ba/rig_prior.h"
+#include "colmap_plugins/ba/scale_transfer.h"
 #include "colmap_plugins/ba/schur_covariance.h"
 #include "colmap_plugins/ba/track_line.h"
 #include "colmap_plugins/cameras/camera_models.h"
@@ -1388,6 +1389,9 @@ BundleCovariance EstimateBundleCovariance(
   }
   if (const auto warning =
           TrackLineWarning(model, priors, adjuster.use_attitude)) {
+    covariance.warnings.push_back(*warning);
+  }
+  if (const auto warning = ScaleTransferWarning(model, !priors.empty())) {
     covariance.warnings.push_back(*warning);
   }
   if (!priors.empty()) {

@@ -7,6 +7,7 @@
 
 #include "colmap_plugins/ba/ba_report.h"
 #include "colmap_plugins/ba/prior_alignment.h"
+#include "colmap_plugins/ba/scale_transfer.h"
 #include "colmap_plugins/ba/track_line.h"
 #include "common/util/error.h"
 
@@ -218,6 +219,10 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
       options.strategy == NavStrategy::kPrior && options.adjuster.use_attitude;
   if (const auto warning =
           TrackLineWarning(*model, inputs.priors, attitude_priors)) {
+    result.report.warnings.push_back(*warning);
+  }
+  if (const auto warning =
+          ScaleTransferWarning(*model, !inputs.priors.empty())) {
     result.report.warnings.push_back(*warning);
   }
   result.total_time_s =
