@@ -38,6 +38,19 @@ Eigen::Vector3d ReferenceOf(const Eigen::Vector3d& centre) {
   return 2.0 * centre + Eigen::Vector3d(10, 20, 30);
 }
 
+// ref.txt in `dir`: "img<k>.png x y z", the references of `centres`.
+std::string WriteReferences(const fs::path& dir,
+                            const std::vector<Eigen::Vector3d>& centres) {
+  const std::string path = (dir / "ref.txt").string();
+  std::ofstream ref(path);
+  for (size_t k = 0; k < centres.size(); ++k) {
+    const Eigen::Vector3d position = ReferenceOf(centres[k]);
+    ref << fmt::format("img{}.png {} {} {}\n", k, position.x(), position.y(),
+                       position.z());
+  }
+  return path;
+}
+
 // nav.csv of a down-looking camera at the vehicle's reference point: one
 // row per image of the model and one of an image the model lacks.
 fs::path WriteNav(const fs::path& dir) {
@@ -149,14 +162,7 @@ TEST(ModelAlignment, WarnsWhenTheCentresLieOnOneLine) {
                          k % 3 == 0 ? 0.03 : 0.0);
   }
   ModelAlignmentOptions options;
-  options.ref_images_path = (dir / "ref.txt").string();
-  std::ofstream ref(options.ref_images_path);
-  for (size_t k = 0; k < centres.size(); ++k) {
-    const Eigen::Vector3d position = ReferenceOf(centres[k]);
-    ref << fmt::format("img{}.png {} {} {}\n", k, position.x(), position.y(),
-                       position.z());
-  }
-  ref.close();
+  options.ref_images_path = WriteReferences(dir, centres);
   const ModelAlignment alignment = AlignModel(options, ImagesAt(centres));
   ASSERT_EQ(alignment.warnings.size(), 1u);
   EXPECT_NE(alignment.warnings[0].find("21 camera centres lie nearly on one "
@@ -171,14 +177,7 @@ TEST(ModelAlignment, WarnsWhenTheCentresLieOnOneLine) {
 TEST(ModelAlignment, TooFewCommonImagesIsAnError) {
   const fs::path dir = testing::FreshTestDir("uw_model_alignment_ref");
   ModelAlignmentOptions options;
-  options.ref_images_path = (dir / "ref.txt").string();
-  std::ofstream ref(options.ref_images_path);
-  for (size_t k = 0; k < kCentres.size(); ++k) {
-    const Eigen::Vector3d position = ReferenceOf(kCentres[k]);
-    ref << fmt::format("img{}.png {} {} {}\n", k, position.x(), position.y(),
-                       position.z());
-  }
-  ref.close();
+  options.ref_images_path = WriteReferences(dir, kCentres);
   options.similarity.robust = false;
   const ModelAlignment alignment = AlignModel(options, FiveImages());
   EXPECT_FALSE(alignment.covariance_weighted);
