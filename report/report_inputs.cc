@@ -193,6 +193,8 @@ CovarianceSummary ReadCovarianceSummary(const fs::path& dir) {
   summary.gauge_description = json.value("gauge_description", "");
   summary.pixel_sigma_px = Get<double>(json, "pixel_sigma_px", path);
   summary.pixel_sigma_source = json.value("pixel_sigma_source", "");
+  summary.nav_sigma_scale = json.value("nav_sigma_scale", 1.0);
+  summary.nav_sigma_source = json.value("nav_sigma_source", "");
   summary.num_images = Get<int>(json, "num_images", path);
   summary.num_points = Get<int>(json, "num_points", path);
   const Json& images = Get<Json>(json, "images", path);

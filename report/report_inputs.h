@@ -106,6 +106,9 @@ struct CovarianceSummary {
   std::string gauge_description;
   double pixel_sigma_px = 0.0;
   std::string pixel_sigma_source;
+  // The factor on the navigation's stated sigmas (docs/covariance.md).
+  double nav_sigma_scale = 1.0;
+  std::string nav_sigma_source;
   int num_images = 0;
   int num_points = 0;
   Quantiles centre_sigma_m;

@@ -642,6 +642,7 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
     Json uncertainty = {
         {"gauge", c.gauge},
         {"pixel_sigma_px", c.pixel_sigma_px},
+        {"nav_sigma_scale", c.nav_sigma_scale},
         {"num_images", c.num_images},
         {"num_points", c.num_points},
         {"centre_sigma_m_median", c.centre_sigma_m.median},
@@ -659,7 +660,12 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
         (c.gauge == "priors" ? ", here the navigation, so they are absolute"
                              : "") +
         ". Pixel noise " + Fixed(c.pixel_sigma_px, 3) + " px (" +
-        HtmlEscape(c.pixel_sigma_source) + ").</p>\n";
+        HtmlEscape(c.pixel_sigma_source) + ")" +
+        (c.gauge == "priors" ? "; navigation sigmas as stated &times; " +
+                                   Fixed(c.nav_sigma_scale, 3) + " (" +
+                                   HtmlEscape(c.nav_sigma_source) + ")"
+                             : std::string()) +
+        ".</p>\n";
     std::vector<std::vector<std::string>> rows = {
         {"camera centre (m)", Fixed(c.centre_sigma_m.median, 4),
          Fixed(c.centre_sigma_m.p95, 4), Fixed(c.centre_sigma_m.max, 4)},

@@ -74,6 +74,8 @@ TEST_F(SurveyReportTest, WritesEverySectionFromEveryInput) {
         "colmap BA + model_aligner (camera centres)", "(+0.250, -0.500, ",
         // The uncertainty section and the laser scale's model sampling.
         "gauge <b>priors</b>", "0.0310", "3 weak points",
+        "navigation sigmas as stated &times; 1.420 (as the adjustment "
+        "weighted them: lambda 0.4 px/m)",
         "image 3.png sees 4 points only", "spreads by 7.05 %",
         "200 draws of its covariance", "calibration 64 %, model 36 %",
         "z = +4.25: beyond 3 &sigma;",
@@ -107,6 +109,7 @@ TEST_F(SurveyReportTest, WritesEverySectionFromEveryInput) {
   EXPECT_EQ(report.at("num_images_in_index").get<size_t>(), 9u);
   EXPECT_EQ(report.at("uncertainty").at("gauge"), "priors");
   EXPECT_EQ(report.at("uncertainty").at("num_samples"), 200);
+  EXPECT_EQ(report.at("uncertainty").at("nav_sigma_scale").get<double>(), 1.42);
   EXPECT_EQ(report.at("scale").at("navigation_z").get<double>(), 4.25);
   const std::string residuals = ReadFileToString(out / "prior_residuals.csv");
   EXPECT_EQ(residuals.rfind("image,dive,error_x_m", 0), 0u);

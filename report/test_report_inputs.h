@@ -147,6 +147,8 @@ inline SurveyReportInputs WriteTestReportInputs(
                 R"({"format": "uwmetric-covariance", "version": 1,
  "gauge": "priors", "gauge_description": "the navigation priors",
  "pixel_sigma_px": 0.35, "pixel_sigma_source": "estimated",
+ "nav_sigma_scale": 1.42,
+ "nav_sigma_source": "as the adjustment weighted them: lambda 0.4 px/m",
  "num_images": 4, "num_points": 100,
  "images": {"sigma_position_m": {"median": 0.012, "p95": 0.02, "max": 0.031},
             "sigma_rotation_deg": {"median": 0.08, "p95": 0.1, "max": 0.14}},

@@ -40,7 +40,8 @@ nlohmann::json ReadJson(const fs::path& path) {
 // CTest runs every case in its own process, two at a time: each case has
 // its own folder.
 // A navigation-fused adjustment with its covariance and 40 draws; then
-// covariance_estimator on the adjusted model must give the same.
+// covariance_estimator on the adjusted model, given the weight the
+// adjustment solved with, must give the same.
 TEST(CovarianceEstimator, BundleAdjusterAndEstimatorAgree) {
   const fs::path dir = FreshTestDir("uw_covariance_estimator_agree");
   const auto adjuster = RunProcess(
@@ -78,11 +79,26 @@ TEST(CovarianceEstimator, BundleAdjusterAndEstimatorAgree) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'),
             json.at("num_images").get<long>() + 1);
 
-  const auto result =
-      RunProcess(Quoted(kUwcolmap) + " covariance_estimator --input_path " +
-                     Quoted(dir / "ba") + " --output_path " +
-                     Quoted(dir / "cov") + NavFlags(),
-                 true);
+  // The priors as the adjustment weighted them: stated x sigma_px /
+  // (lambda sigma_n), printed.
+  const nlohmann::json report = ReadJson(dir / "ba" / "ba_report.json");
+  const double weight = report.at("weight_px_per_m").get<double>();
+  const double nav_sigma_scale = json.at("nav_sigma_scale").get<double>();
+  std::cout << "[ figures ] survey: navigation sigmas as stated x "
+            << nav_sigma_scale << " (lambda " << weight << " px/m)\n";
+  EXPECT_NEAR(nav_sigma_scale,
+              json.at("pixel_sigma_px").get<double>() /
+                  (weight * report.at("nav_sigma_m").get<double>()),
+              1e-12);
+  EXPECT_NE(adjuster.output.find("navigation sigmas: stated x"),
+            std::string::npos);
+
+  const auto result = RunProcess(
+      Quoted(kUwcolmap) + " covariance_estimator --input_path " +
+          Quoted(dir / "ba") + " --output_path " + Quoted(dir / "cov") +
+          NavFlags() + " --Covariance.nav_weight " +
+          report.at("weight_px_per_m").dump(),
+      true);
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const nlohmann::json ours = ReadJson(dir / "cov" / "covariance.json");
   const nlohmann::json& adjusters = json;
@@ -100,6 +116,17 @@ TEST(CovarianceEstimator, BundleAdjusterAndEstimatorAgree) {
   // Asked for no draws: none written.
   EXPECT_FALSE(fs::exists(dir / "cov" / "samples.bin"));
   EXPECT_FALSE(ours.contains("samples"));
+
+  // As stated: the factor is 1, and says so.
+  const auto stated =
+      RunProcess(Quoted(kUwcolmap) + " covariance_estimator --input_path " +
+                     Quoted(dir / "ba") + " --output_path " +
+                     Quoted(dir / "stated") + NavFlags(),
+                 true);
+  ASSERT_EQ(stated.exit_code, 0) << stated.output;
+  const nlohmann::json as_stated = ReadJson(dir / "stated" / "covariance.json");
+  EXPECT_EQ(as_stated.at("nav_sigma_scale").get<double>(), 1.0);
+  EXPECT_EQ(as_stated.at("nav_sigma_source"), "the priors' sigmas as stated");
 }
 
 TEST(CovarianceEstimator, HeldGaugeOnStockColmapsModel) {
@@ -189,6 +216,21 @@ TEST(CovarianceEstimator, RefusesAGaugeItCannotHaveAndWritesNothing) {
     EXPECT_NE(result.output.find("fix it twice"), std::string::npos)
         << result.output;
     EXPECT_FALSE(fs::exists(out / "covariance.json"));
+  }
+  {
+    // bundle_adjuster weights its covariance's priors as it solved.
+    const fs::path out = dir / "weight";
+    const auto result = RunProcess(
+        Quoted(kUwcolmap) + " bundle_adjuster --input_path " +
+            Quoted(kSparseDir) + " --output_path " + Quoted(out) + NavFlags() +
+            " --BA.covariance 1 --Covariance.nav_weight 2",
+        true);
+    EXPECT_NE(result.exit_code, 0);
+    EXPECT_NE(result.output.find("--Covariance.nav_weight is for "
+                                 "covariance_estimator"),
+              std::string::npos)
+        << result.output;
+    EXPECT_FALSE(fs::exists(out));
   }
 }
 

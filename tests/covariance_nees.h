@@ -56,8 +56,8 @@ enum class NeesGauge {
             // the estimate in the truth's datum
   kFreeNetwork,  // no navigation; the minimum-norm pseudo-inverse, against
                  // errors with the same inner constraints: the estimate
-                 // moved by the first-order similarity that least-squares
-                 // its tangent error over every pose and point
+                 // moved by the similarity that least-squares its tangent
+                 // error over every pose and point (Gauss-Newton to a nm)
 };
 
 struct NeesOptions {
@@ -74,6 +74,10 @@ struct NeesOptions {
   // and is drawn with, in place of the survey's (a DVL-aided log's 0.2 m
   // where the survey states a USBL's 0.85 m).
   double horizontal_sigma_m = 0.0;
+  // kPriors only: the positions' noise is drawn with this factor times the
+  // sigmas the log states (a log more optimistic than its noise; the
+  // adjuster's --Nav.weight auto estimates the factor as s_n).
+  double navigation_noise_factor = 1.0;
 };
 
 // options.num_trials (or UW_NEES_TRIALS) re-adjustments of the survey in

@@ -76,6 +76,26 @@ TEST(CovarianceNeesOnTheVent, FusedWithATighterNavigationIsCalibrated) {
   ExpectCalibrated(nees);
 }
 
+// A log three times more optimistic than its noise (0.1 m stated, 0.3 m
+// drawn horizontally): the adjuster weights it by the s_n it estimates
+// (--Nav.weight auto), and so does the covariance; with the sigmas as
+// stated, its datum would be three times too tight.
+TEST(CovarianceNeesOnTheVent,
+     ANavigationWorseThanStatedIsCalibratedAsWeighted) {
+  const fs::path sim_dir = fs::path(UW_PLANS_DIR) / "vent";
+  NeesOptions options = PlanOptions(sim_dir, NeesGauge::kPriors);
+  options.horizontal_sigma_m = 0.1;
+  options.navigation_noise_factor = 3.0;
+  const Nees nees = MeanNees(sim_dir, options);
+  std::cout << NeesFigures(
+                   "fused re-adjustments of the vent plan (positions, 0.1 m "
+                   "stated, 0.3 m drawn)",
+                   nees)
+            << "\n";
+  EXPECT_EQ(nees.num_warned, 0);
+  ExpectCalibrated(nees);
+}
+
 TEST_P(CovarianceNeesOnWorlds, PriorFreeAdjustmentsAreCalibrated) {
   const Nees nees = MeanNees(SimDir(), PlanOptions(SimDir(), NeesGauge::kHeld));
   std::cout << NeesFigures("prior-free re-adjustments of the " + GetParam() +

@@ -48,6 +48,10 @@ void BundleCovarianceOptions::Check() const {
     throw ErrorAt("the pixel sigma (", pixel_sigma_px,
                   " px) must be >= 0 (0: estimated)");
   }
+  if (!(std::isfinite(nav_weight_px_per_m) && nav_weight_px_per_m >= 0.0)) {
+    throw ErrorAt("the navigation weight (", nav_weight_px_per_m,
+                  " px/m) must be >= 0 (0: the priors' sigmas as stated)");
+  }
   if (num_samples < 0) {
     throw ErrorAt("the number of samples (", num_samples, ") must be >= 0");
   }

@@ -53,6 +53,13 @@ struct BundleCovarianceOptions {
   // Pixel noise (px per coordinate); 0: estimated from the reprojection
   // residuals with the images' redundancy (2M - 3P - 6I - K + gauge).
   double pixel_sigma_px = 0.0;
+  // The weight lambda (px/m) the adjustment gave the navigation priors
+  // against the images (ba_report.json's weight_px_per_m): the priors'
+  // sigmas are then taken as stated x pixel sigma / (lambda sigma_n), as
+  // that adjustment weighted them (--Nav.weight auto: stated x s_n, the
+  // factor the data show them off by). 0: as stated. bundle_adjuster sets
+  // it to the weight it solved with.
+  double nav_weight_px_per_m = 0.0;
   bool point_marginals = true;
   // Cross-covariances of image pairs that see a common point.
   bool covisible_cross = false;
@@ -106,6 +113,9 @@ struct BundleCovariance {
   std::string gauge_description;
   double pixel_sigma_px = 0.0;
   std::string pixel_sigma_source;
+  // The factor on the priors' stated sigmas (1: as stated), and why.
+  double nav_sigma_scale = 1.0;
+  std::string nav_sigma_source;
   int num_observations = 0;
   std::vector<ImageCovariance> images;
   std::vector<CameraCovariance> cameras;

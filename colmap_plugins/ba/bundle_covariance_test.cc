@@ -135,6 +135,53 @@ TEST(BundleCovariance, PixelSigmaIsEstimatedWithTheRedundancy) {
   EXPECT_EQ(estimated.cameras[0].params.rows(), 2);
 }
 
+// The priors as the adjustment weighted them: a weight lambda makes their
+// sigmas stated x sigma_px / (lambda sigma_n), exactly as if stated so.
+TEST(BundleCovariance, NavWeightTakesThePriorsAsTheAdjustmentWeightedThem) {
+  const test::TestScene scene = test::MakeTestScene({});
+  Reconstruction model = scene.observed;
+  NavBundleAdjustmentOptions adjuster = RefinedIntrinsics();
+  adjuster.weight_px_per_m *= 3.0;  // navigation trusted 3x its sigmas
+  AdjustWithNavigation(adjuster, scene.priors, nullptr, {}, &model);
+  BundleCovarianceOptions weighted;
+  weighted.nav_weight_px_per_m = adjuster.weight_px_per_m;
+  const BundleCovariance a = EstimateBundleCovariance(
+      adjuster, scene.priors, nullptr, {}, model, weighted);
+  EXPECT_NEAR(
+      a.nav_sigma_scale,
+      a.pixel_sigma_px / (adjuster.weight_px_per_m * NavSigma(scene.priors)),
+      1e-15);
+  EXPECT_LT(a.nav_sigma_scale, 0.5);
+
+  std::vector<ImagePosePrior> scaled = scene.priors;
+  for (ImagePosePrior& prior : scaled) {
+    prior.position_covariance *= a.nav_sigma_scale * a.nav_sigma_scale;
+    prior.rotation_covariance *= a.nav_sigma_scale * a.nav_sigma_scale;
+  }
+  BundleCovarianceOptions as_stated;
+  as_stated.pixel_sigma_px = a.pixel_sigma_px;
+  const BundleCovariance b =
+      EstimateBundleCovariance(adjuster, scaled, nullptr, {}, model, as_stated);
+  EXPECT_EQ(b.nav_sigma_scale, 1.0);
+  ASSERT_EQ(a.images.size(), b.images.size());
+  for (size_t i = 0; i < a.images.size(); ++i) {
+    EXPECT_LT(
+        (a.images[i].rotation_center - b.images[i].rotation_center).norm(),
+        1e-9 * b.images[i].rotation_center.norm());
+  }
+
+  // As stated, the navigation holds the datum 3x less tightly.
+  const BundleCovariance stated =
+      EstimateBundleCovariance(adjuster, scene.priors, nullptr, {}, model, {});
+  EXPECT_GT(stated.images[0].CenterCovariance().trace(),
+            2.0 * a.images[0].CenterCovariance().trace());
+
+  weighted.nav_weight_px_per_m = -1.0;
+  EXPECT_THROW(EstimateBundleCovariance(adjuster, scene.priors, nullptr, {},
+                                        model, weighted),
+               Error);
+}
+
 TEST(BundleCovariance, NearlyDegenerateSelfCalibrationIsFlagged) {
   const test::TestScene scene = test::MakeTestScene({});
   Reconstruction model = scene.observed;

@@ -198,6 +198,8 @@ nlohmann::json CovarianceSummaryJson(const BundleCovariance& covariance,
   json["method"] = CovarianceMethodName(covariance.method);
   json["pixel_sigma_px"] = covariance.pixel_sigma_px;
   json["pixel_sigma_source"] = covariance.pixel_sigma_source;
+  json["nav_sigma_scale"] = covariance.nav_sigma_scale;
+  json["nav_sigma_source"] = covariance.nav_sigma_source;
   json["num_images"] = covariance.images.size();
   json["num_points"] = covariance.points.size();
   json["num_observations"] = covariance.num_observations;

@@ -113,6 +113,34 @@ double NavSigma(const std::vector<ImagePosePrior>& priors) {
 
 namespace {
 
+// Levenberg-Marquardt crawls along a long survey's weak, curved directions
+// (a strip's bending and scale): on the scarp plan without navigation,
+// stopped at the limit of 100, the 86 iterations it still needed lowered
+// the cost by 5e-6 of itself and moved the cameras by 1-2 m. COLMAP reports
+// NO_CONVERGENCE and carries on; a model that far from its minimum is not
+// what its covariance describes.
+std::string NoConvergenceWarning(const ceres::Solver::Summary& summary,
+                                 int max_num_iterations) {
+  constexpr int kLastIterations = 10;
+  const std::vector<ceres::IterationSummary>& iterations = summary.iterations;
+  const int last = std::max(
+      0,
+      std::min<int>(kLastIterations, static_cast<int>(iterations.size()) - 1));
+  const double earlier = iterations.empty()
+                             ? summary.final_cost
+                             : iterations[iterations.size() - 1 - last].cost;
+  return fmt::format(
+      "the adjustment stopped at its iteration limit "
+      "(--BundleAdjustment.max_num_iterations {}) before converging: its "
+      "last {} iterations still lowered the cost by {:.2g} times its final "
+      "value. Along its weakest directions the model may still be far from "
+      "the minimum (a 100 m single pass without navigation: 1-2 m), and its "
+      "covariance describes the minimum, not this model. Raise "
+      "--BundleAdjustment.max_num_iterations",
+      max_num_iterations, last,
+      (earlier - summary.final_cost) / summary.final_cost);
+}
+
 using Clock = std::chrono::steady_clock;
 
 struct PoseBlock {
@@ -207,6 +235,10 @@ class Adjustment {
   // The pixel sigma of the covariance: given, or from the residuals.
   void ChoosePixelSigma(const BundleCovarianceOptions& options,
                         BundleCovariance* covariance) const;
+  // The factor on the priors' stated sigmas: 1, or as the adjustment
+  // weighted them (BundleCovarianceOptions::nav_weight_px_per_m).
+  void ChooseNavSigmaScale(const BundleCovarianceOptions& options,
+                           BundleCovariance* covariance) const;
   // The similarity directions in the tangent space of each variable.
   void FillSimilarityNullSpace(const ceres::Problem& problem,
                                const std::vector<point3D_t>& point_ids,
@@ -959,6 +991,10 @@ NavBundleAdjustmentReport Adjustment::Run() {
   report.solve_time_s =
       std::chrono::duration<double>(Clock::now() - start).count();
   report.termination = ceres::TerminationTypeToString(summary.termination_type);
+  if (summary.termination_type == ceres::NO_CONVERGENCE) {
+    report.warnings.push_back(
+        NoConvergenceWarning(summary, options_.max_num_iterations));
+  }
   report.solver = std::string(ceres::LinearSolverTypeToString(
                       summary.linear_solver_type_used)) +
                   ", " + std::to_string(summary.num_threads_used) + " threads";
@@ -1054,6 +1090,33 @@ void Adjustment::ChoosePixelSigma(const BundleCovarianceOptions& options,
   }
   covariance->pixel_sigma_source = "estimated: sqrt(sum |r|^2 / redundancy " +
                                    std::to_string(redundancy) + ")";
+}
+
+void Adjustment::ChooseNavSigmaScale(const BundleCovarianceOptions& options,
+                                     BundleCovariance* covariance) const {
+  if (priors_.empty() || options.nav_weight_px_per_m == 0.0) {
+    covariance->nav_sigma_source =
+        priors_.empty() ? "no priors" : "the priors' sigmas as stated";
+    return;
+  }
+  if (options_.weighting != NavWeighting::kLikelihood) {
+    // Eq. 2 weights the priors M/N times their likelihood: no sigma of
+    // theirs describes that.
+    throw ErrorAt(
+        "a navigation weight under --Nav.weighting ",
+        NavWeightingName(options_.weighting),
+        " is not a likelihood: give the covariance the priors as stated "
+        "(--Covariance.nav_weight 0) or adjust with --Nav.weighting "
+        "likelihood");
+  }
+  // The adjustment weighed a prior's error in sigmas by lambda sigma_n
+  // against pixels, so as a likelihood with this pixel sigma its sigmas
+  // were stated x sigma_px / (lambda sigma_n).
+  covariance->nav_sigma_scale =
+      covariance->pixel_sigma_px / (options.nav_weight_px_per_m * nav_sigma_m_);
+  covariance->nav_sigma_source =
+      fmt::format("as the adjustment weighted them: lambda {:g} px/m",
+                  options.nav_weight_px_per_m);
 }
 
 void Adjustment::FillSimilarityNullSpace(
@@ -1176,13 +1239,14 @@ BundleCovariance Adjustment::Covariance(
     }
   }
   ChoosePixelSigma(options, &result);
+  ChooseNavSigmaScale(options, &result);
 
   Weights weights;
   weights.reprojection = 1.0 / result.pixel_sigma_px;
   weights.reprojection_loss_scale =
       options_.loss_scale_px / result.pixel_sigma_px;
-  weights.nav = 1.0;
-  weights.nav_loss_scale = options_.nav_loss_scale;
+  weights.nav = 1.0 / result.nav_sigma_scale;
+  weights.nav_loss_scale = options_.nav_loss_scale * weights.nav;
   weights.rig = 1.0;
   ceres::Problem problem;
   Build(weights, &problem, nullptr);

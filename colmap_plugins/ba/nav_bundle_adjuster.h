@@ -170,9 +170,10 @@ struct NavBundleAdjustmentReport {
   double solve_time_s = 0.0;
   double covariance_time_s = 0.0;
   std::string covariance_note;
-  // What the result does not hold, printed and in ba_report.json (the
-  // controller's: a track the positions leave a rotation of,
-  // track_line.h).
+  // What the result does not hold, printed and in ba_report.json: the
+  // adjuster's (a solve stopped at its iteration limit) and the
+  // controller's (a track the positions leave a rotation of, track_line.h;
+  // images without scale transfer, scale_transfer.h).
   std::vector<std::string> warnings;
 };
 

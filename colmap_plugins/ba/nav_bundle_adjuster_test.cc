@@ -42,6 +42,29 @@ TEST(NavBundleAdjuster, WithoutPriorsFixesSevenDofAndReachesTheNoiseFloor) {
   EXPECT_EQ(report.final_terms.count("navigation_position"), 0u);
 }
 
+// Stopped at its iteration limit, the adjustment says so (COLMAP reports
+// NO_CONVERGENCE and carries on); run on to its minimum, it does not.
+TEST(NavBundleAdjuster, ASolveStoppedAtItsIterationLimitWarns) {
+  const test::TestScene scene = test::MakeTestScene({});
+  Reconstruction model = scene.observed;
+  test::Perturb(0.1, 0.01, 8, &model);
+  NavBundleAdjustmentOptions options = test::FixedIntrinsics();
+  options.max_num_iterations = 2;
+  const NavBundleAdjustmentReport stopped =
+      AdjustWithNavigation(options, {}, nullptr, {}, &model);
+  EXPECT_EQ(stopped.termination, "NO_CONVERGENCE");
+  ASSERT_EQ(stopped.warnings.size(), 1u);
+  std::cout << "[ figures ] " << stopped.warnings[0] << "\n";
+  EXPECT_NE(stopped.warnings[0].find(
+                "(--BundleAdjustment.max_num_iterations 2) before converging"),
+            std::string::npos);
+
+  const NavBundleAdjustmentReport converged =
+      AdjustWithNavigation(test::FixedIntrinsics(), {}, nullptr, {}, &model);
+  EXPECT_EQ(converged.termination, "CONVERGENCE");
+  EXPECT_TRUE(converged.warnings.empty());
+}
+
 TEST(NavBundleAdjuster, PriorsPlaceTheModelInTheWorld) {
   test::TestSceneOptions scene_options;
   const test::TestScene scene = test::MakeTestScene(scene_options);

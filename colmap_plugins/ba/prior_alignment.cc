@@ -6,7 +6,8 @@
 namespace uw {
 
 Sim3d AlignToPriors(const std::vector<ImagePosePrior>& priors,
-                    Reconstruction* reconstruction) {
+                    Reconstruction* reconstruction,
+                    const SimilarityOptions& options) {
   std::vector<Eigen::Vector3d> centers;
   std::vector<Eigen::Vector3d> positions;
   std::vector<Eigen::Matrix3d> covariances;
@@ -20,7 +21,6 @@ Sim3d AlignToPriors(const std::vector<ImagePosePrior>& priors,
     positions.push_back(prior.position_in_world);
     covariances.push_back(prior.position_covariance);
   }
-  SimilarityOptions options;
   const SimilarityResult result =
       EstimateSimilarity(centers, positions, &covariances, options);
   TransformReconstruction(result.b_from_a, reconstruction);

@@ -101,6 +101,11 @@ void AddCovarianceFlags(CommandLine* cli, BundleCovarianceOptions* options) {
   cli->Add("--Covariance.pixel_sigma", &options->pixel_sigma_px,
            "Pixel noise per coordinate (px); 0: estimated from the "
            "reprojection residuals and the images' redundancy");
+  cli->Add("--Covariance.nav_weight", &options->nav_weight_px_per_m,
+           "The weight (px/m) the adjustment gave the navigation "
+           "(ba_report.json's weight_px_per_m): the priors' sigmas are "
+           "taken as it weighted them; 0: as stated. bundle_adjuster uses "
+           "its own");
   cli->Add("--Covariance.points", &options->point_marginals,
            "Also the 3x3 marginal of every point");
   cli->Add("--Covariance.covisible", &options->covisible_cross,
@@ -129,8 +134,12 @@ BundleCovariance EstimateCovariance(
       inputs.image_times, model, options);
   const nlohmann::json summary = CovarianceSummaryJson(covariance, model);
   std::cout << "  pixel sigma " << covariance.pixel_sigma_px << " px ("
-            << covariance.pixel_sigma_source << ")\n"
-            << "  camera centre sigma: median "
+            << covariance.pixel_sigma_source << ")\n";
+  if (!inputs.priors.empty()) {
+    std::cout << "  navigation sigmas: stated x " << covariance.nav_sigma_scale
+              << " (" << covariance.nav_sigma_source << ")\n";
+  }
+  std::cout << "  camera centre sigma: median "
             << summary["images"]["sigma_position_m"]["median"].get<double>()
             << " m, max "
             << summary["images"]["sigma_position_m"]["max"].get<double>()
@@ -215,9 +224,24 @@ void RunBundleAdjuster(const BundleAdjusterOptions& options) {
     NavInputs inputs =
         LoadNavInputs(adjustment.priors, model, adjustment.input_path);
     if (adjustment.strategy == NavStrategy::kPosterior) inputs.priors.clear();
-    covariance = EstimateCovariance(adjustment.adjuster, inputs,
-                                    options.covariance_options, model,
-                                    result.report.warnings);
+    // The priors as the adjustment weighted them (--Nav.weight auto: their
+    // sigmas x the s_n the data show), not as stated.
+    BundleCovarianceOptions covariance_options = options.covariance_options;
+    if (!inputs.priors.empty() &&
+        adjustment.adjuster.weighting == NavWeighting::kLikelihood) {
+      covariance_options.nav_weight_px_per_m = result.report.weight_px_per_m;
+    }
+    covariance =
+        EstimateCovariance(adjustment.adjuster, inputs, covariance_options,
+                           model, result.report.warnings);
+    // Its json carries whatever the adjuster found wrong with the model it
+    // describes (an unconverged solve above all).
+    for (const std::string& warning : result.report.warnings) {
+      if (std::find(covariance->warnings.begin(), covariance->warnings.end(),
+                    warning) == covariance->warnings.end()) {
+        covariance->warnings.push_back(warning);
+      }
+    }
   }
   const fs::path output(options.output_path);
   WriteModel(model, output, files.format);
@@ -286,6 +310,11 @@ void BundleAdjusterOptions::Check() const {
   if (fs::equivalent(adjustment.input_path, output_path, ignored)) {
     throw ErrorAt("--output_path ", output_path,
                   " is the input folder; write to another folder");
+  }
+  if (covariance_options.nav_weight_px_per_m != 0.0) {
+    throw ErrorAt(
+        "--Covariance.nav_weight is for covariance_estimator: "
+        "bundle_adjuster gives its covariance the weight it solved with");
   }
   adjustment.Check();
 }
