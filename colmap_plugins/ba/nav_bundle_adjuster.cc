@@ -1247,7 +1247,9 @@ BundleCovariance Adjustment::Covariance(
       options_.loss_scale_px / result.pixel_sigma_px;
   weights.nav = 1.0 / result.nav_sigma_scale;
   weights.nav_loss_scale = options_.nav_loss_scale * weights.nav;
-  weights.rig = 1.0;
+  // With priors the adjustment weighs the rig terms as it weighs them
+  // (lambda sigma_n against pixels, Run()); without, by the pixel sigma.
+  weights.rig = priors_.empty() ? 1.0 : weights.nav;
   ceres::Problem problem;
   Build(weights, &problem, nullptr);
 

@@ -208,6 +208,13 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
     }
     result.report = AdjustWithNavigation(adjuster, inputs.priors, rig,
                                          inputs.image_times, model);
+    if (result.noise_levels) {
+      for (const std::string& warning : result.noise_levels->warnings) {
+        result.report.warnings.push_back(
+            "the images-only adjustment behind --Nav.weight's noise levels: " +
+            warning);
+      }
+    }
   } else {
     result.report = AdjustWithNavigation(options.adjuster, {}, rig,
                                          inputs.image_times, model);

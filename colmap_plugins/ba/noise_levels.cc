@@ -22,6 +22,7 @@ NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
       AdjustWithNavigation(plain, {}, nullptr, {}, &images_only);
 
   NoiseLevels levels;
+  levels.warnings = report.warnings;
   double free_intrinsics = 0.0;
   for (const Camera& camera : images_only.Cameras()) {
     free_intrinsics += static_cast<double>(camera.params.size()) -
@@ -56,7 +57,8 @@ NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
   SimilarityOptions least_squares;
   least_squares.robust = false;
   constexpr int kMaxRounds = 100;
-  constexpr double kConvergedM = 1e-9;  // the largest move of a camera
+  // The largest move of a camera, against the navigation's stated sigma.
+  const double converged_m = 1e-6 * NavSigma(priors);
   for (int round = 0; round < kMaxRounds; ++round) {
     for (const int dive : dives) {
       if (!options.dive_offsets || dive == reference_dive) continue;
@@ -83,7 +85,7 @@ NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
       largest_move_m =
           std::max(largest_move_m, (centre - step.Inverse() * centre).norm());
     }
-    if (largest_move_m < kConvergedM) break;
+    if (largest_move_m < converged_m) break;
   }
   double chi2 = 0.0;
   for (const ImagePosePrior& prior : priors) {

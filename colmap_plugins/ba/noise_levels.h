@@ -29,6 +29,7 @@
 // than its noise alone would allow, which keeps its noise out of the shape.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "colmap_plugins/ba/nav_bundle_adjuster.h"
@@ -44,6 +45,9 @@ struct NoiseLevels {
   double weight_px_per_m = 0.0;     // lambda = sigma_v / sigma_n
   double reprojection_dof = 0.0;
   double navigation_dof = 0.0;
+  // The images-only adjustment's warnings (an unconverged solve above
+  // all): the estimates come from its model.
+  std::vector<std::string> warnings;
 };
 
 // Runs the images-only adjustment (options' intrinsics and loss, no priors,

@@ -107,6 +107,20 @@ TEST(NoiseLevels, FollowsANoiseLargerThanStated) {
   EXPECT_NEAR(sum / kDraws, 3.0, 0.3);
 }
 
+// The estimates come from the images-only adjustment's model: what it
+// warns of (here, stopping at its iteration limit) is kept.
+TEST(NoiseLevels, KeepsTheImagesOnlyAdjustmentsWarnings) {
+  const test::TestScene scene = test::MakeTestScene({});
+  NavBundleAdjustmentOptions options = test::FixedIntrinsics();
+  EXPECT_TRUE(EstimateNoiseLevels(options, scene.priors, scene.observed)
+                  .warnings.empty());
+  options.max_num_iterations = 1;
+  const NoiseLevels stopped =
+      EstimateNoiseLevels(options, scene.priors, scene.observed);
+  ASSERT_EQ(stopped.warnings.size(), 1u);
+  EXPECT_NE(stopped.warnings[0].find("iteration limit"), std::string::npos);
+}
+
 TEST(NoiseLevels, RejectsPriorsWithoutDegreesOfFreedom) {
   const test::TestScene scene = test::MakeTestScene({});
   const std::vector<ImagePosePrior> three(scene.priors.begin(),
