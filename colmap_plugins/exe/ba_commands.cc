@@ -119,17 +119,18 @@ void AddCovarianceFlags(CommandLine* cli, BundleCovarianceOptions* options) {
            "Seed of the draws (they depend on it alone)");
 }
 
-// The covariance of `model`, its summary and warnings printed (but those
-// in `printed`: the adjuster's own, which the covariance repeats for its
-// json).
+// The covariance of `model`, its summary and warnings printed. Its json
+// also carries `adjuster_warnings` (what the adjuster found wrong with the
+// model it describes, an unconverged solve above all), which the adjuster
+// printed already.
 BundleCovariance EstimateCovariance(
     const NavBundleAdjustmentOptions& adjuster, const NavInputs& inputs,
     const BundleCovarianceOptions& options, const Reconstruction& model,
-    const std::vector<std::string>& printed = {}) {
+    const std::vector<std::string>& adjuster_warnings = {}) {
   PrintLine("Covariance: " + std::to_string(model.Images().size()) +
             " images, " + std::to_string(model.Points3D().size()) +
             " points, gauge " + CovarianceGaugeName(options.gauge));
-  const BundleCovariance covariance = EstimateBundleCovariance(
+  BundleCovariance covariance = EstimateBundleCovariance(
       adjuster, inputs.priors, inputs.rig ? &*inputs.rig : nullptr,
       inputs.image_times, model, options);
   const nlohmann::json summary = CovarianceSummaryJson(covariance, model);
@@ -159,8 +160,15 @@ BundleCovariance EstimateCovariance(
             << covariance.factor_time_s << " s, sparse inverse "
             << covariance.inverse_time_s << " s)\n";
   for (const std::string& warning : covariance.warnings) {
-    if (std::find(printed.begin(), printed.end(), warning) == printed.end()) {
+    if (std::find(adjuster_warnings.begin(), adjuster_warnings.end(),
+                  warning) == adjuster_warnings.end()) {
       std::cerr << "WARNING: " << warning << "\n";
+    }
+  }
+  for (const std::string& warning : adjuster_warnings) {
+    if (std::find(covariance.warnings.begin(), covariance.warnings.end(),
+                  warning) == covariance.warnings.end()) {
+      covariance.warnings.push_back(warning);
     }
   }
   return covariance;
@@ -234,14 +242,6 @@ void RunBundleAdjuster(const BundleAdjusterOptions& options) {
     covariance =
         EstimateCovariance(adjustment.adjuster, inputs, covariance_options,
                            model, result.report.warnings);
-    // Its json carries whatever the adjuster found wrong with the model it
-    // describes (an unconverged solve above all).
-    for (const std::string& warning : result.report.warnings) {
-      if (std::find(covariance->warnings.begin(), covariance->warnings.end(),
-                    warning) == covariance->warnings.end()) {
-        covariance->warnings.push_back(warning);
-      }
-    }
   }
   const fs::path output(options.output_path);
   WriteModel(model, output, files.format);
