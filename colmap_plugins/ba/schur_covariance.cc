@@ -5,11 +5,14 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
-#include <unordered_map>
 #include <unordered_set>
 
 #include <ceres/ceres.h>
 #include <cholmod.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -213,7 +216,22 @@ class SparseInverse {
 // A point's coupling to one reduced variable: B_j's block (kept dims x 3).
 struct PointCoupling {
   int reduced = 0;
+  int point = 0;
   size_t offset = 0;  // into the coupling pool, column-major kept x 3
+};
+using PointBlock = Eigen::Matrix<double, Eigen::Dynamic, 3>;
+
+// S's lower triangle by columns: variable b's column holds the blocks
+// (a, b), a >= b, ascending in a, each column-major kept_a x kept_b at
+// offsets[k] of values (S) and of inverse (S^-1 at the same entries). Lower,
+// not upper: the variables many images share (intrinsics, offsets) come
+// after the images, so each image's column carries its own pairs with them
+// and the shared variables' columns stay short.
+struct ReducedColumn {
+  std::vector<int> rows;
+  std::vector<size_t> offsets;
+  std::vector<double> values;
+  std::vector<double> inverse;
 };
 
 class Computation {
@@ -228,6 +246,14 @@ class Computation {
         options_(options) {}
 
   SchurCovariance Run() {
+    // Every parallel loop gives each output to one task, which sums in a
+    // fixed order: the same bits for any thread count.
+    tbb::task_arena arena(options_.num_threads);
+    return arena.execute([&] { return RunInArena(); });
+  }
+
+ private:
+  SchurCovariance RunInArena() {
     auto start = Clock::now();
     ListColumns();
     EvaluateJacobian();
@@ -253,7 +279,6 @@ class Computation {
     return std::move(result_);
   }
 
- private:
   void ListColumns() {
     std::vector<double*> all;
     problem_->GetParameterBlocks(&all);
@@ -454,148 +479,317 @@ class Computation {
     result_.gauge_dimension = gauge_dimension_;
   }
 
-  static uint64_t PairKey(int a, int b) {
-    return (static_cast<uint64_t>(a) << 32) | static_cast<uint32_t>(b);
+  // The point Jacobian row r sees (its entries at point columns), or -1.
+  int RowPoint(int r) const {
+    int point = -1;
+    for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
+      const ColumnOwner& owner = owners_[jacobian_.cols[e]];
+      if (owner.point < 0) continue;
+      if (point >= 0 && owner.point != point) {
+        throw ErrorAt("a residual couples ", points_[point].name, " and ",
+                      points_[owner.point].name,
+                      "; points must be independent given the reduced "
+                      "variables");
+      }
+      point = owner.point;
+    }
+    return point;
   }
 
-  // Which reduced variables each point couples to, and the pool offsets.
+  // The reduced variables with kept coordinates that point j's rows see,
+  // ascending, into *vars.
+  void CoupledVariables(int j, std::vector<int>* vars) const {
+    vars->clear();
+    for (int x = point_row_begin_[j]; x < point_row_begin_[j + 1]; ++x) {
+      const int r = point_rows_[x];
+      for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
+        const ColumnOwner& owner = owners_[jacobian_.cols[e]];
+        if (owner.kept >= 0) vars->push_back(owner.reduced);
+      }
+    }
+    std::sort(vars->begin(), vars->end());
+    vars->erase(std::unique(vars->begin(), vars->end()), vars->end());
+  }
+
+  // Rows by point and by reduced variable, and each point's couplings with
+  // their places in the pool. Every index lists its entries ascending, so
+  // that what is summed from them is summed in one order for any number of
+  // threads.
   void IndexCouplings() {
-    std::vector<std::vector<int>> seen(points_.size());
+    const int num_points = static_cast<int>(points_.size());
+    std::vector<int> row_point(jacobian_.num_rows);
+    point_row_begin_.assign(num_points + 1, 0);
+    variable_row_begin_.assign(reduced_.size() + 1, 0);
     for (int r = 0; r < jacobian_.num_rows; ++r) {
-      int point = -1;
-      for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
-        const ColumnOwner& owner = owners_[jacobian_.cols[e]];
-        if (owner.point < 0) continue;
-        if (point >= 0 && owner.point != point) {
-          throw ErrorAt("a residual couples ", points_[point].name, " and ",
-                        points_[owner.point].name,
-                        "; points must be independent given the reduced "
-                        "variables");
-        }
-        point = owner.point;
-      }
-      if (point < 0) continue;
-      ++point_rows_[point];
-      for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
-        const ColumnOwner& owner = owners_[jacobian_.cols[e]];
-        if (owner.reduced >= 0 && kept_dim_[owner.reduced] > 0) {
-          seen[point].push_back(owner.reduced);
-        }
-      }
+      row_point[r] = RowPoint(r);
+      if (row_point[r] >= 0) ++point_row_begin_[row_point[r] + 1];
+      ForEachRowVariable(r, [&](int a) { ++variable_row_begin_[a + 1]; });
     }
+    std::partial_sum(point_row_begin_.begin(), point_row_begin_.end(),
+                     point_row_begin_.begin());
+    std::partial_sum(variable_row_begin_.begin(), variable_row_begin_.end(),
+                     variable_row_begin_.begin());
+    point_rows_.resize(point_row_begin_.back());
+    variable_rows_.resize(variable_row_begin_.back());
+    std::vector<int> point_next(point_row_begin_.begin(),
+                                point_row_begin_.end() - 1);
+    std::vector<int> variable_next(variable_row_begin_.begin(),
+                                   variable_row_begin_.end() - 1);
+    for (int r = 0; r < jacobian_.num_rows; ++r) {
+      if (row_point[r] >= 0) point_rows_[point_next[row_point[r]]++] = r;
+      ForEachRowVariable(
+          r, [&](int a) { variable_rows_[variable_next[a]++] = r; });
+    }
+
+    std::vector<int> num_couplings(num_points);
+    tbb::enumerable_thread_specific<std::vector<int>> scratch;
+    tbb::parallel_for(tbb::blocked_range<int>(0, num_points, 1024),
+                      [&](const tbb::blocked_range<int>& range) {
+                        std::vector<int>& vars = scratch.local();
+                        for (int j = range.begin(); j < range.end(); ++j) {
+                          CoupledVariables(j, &vars);
+                          num_couplings[j] = static_cast<int>(vars.size());
+                        }
+                      });
+    coupling_begin_.assign(num_points + 1, 0);
+    for (int j = 0; j < num_points; ++j) {
+      coupling_begin_[j + 1] = coupling_begin_[j] + num_couplings[j];
+    }
+    couplings_.resize(coupling_begin_.back());
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, num_points, 1024),
+        [&](const tbb::blocked_range<int>& range) {
+          std::vector<int>& vars = scratch.local();
+          for (int j = range.begin(); j < range.end(); ++j) {
+            CoupledVariables(j, &vars);
+            for (size_t k = 0; k < vars.size(); ++k) {
+              couplings_[coupling_begin_[j] + k] = {vars[k], j, 0};
+            }
+          }
+        });
     size_t pool = 0;
-    coupling_begin_.assign(points_.size() + 1, 0);
-    for (size_t j = 0; j < points_.size(); ++j) {
-      std::vector<int>& vars = seen[j];
-      std::sort(vars.begin(), vars.end());
-      vars.erase(std::unique(vars.begin(), vars.end()), vars.end());
-      coupling_begin_[j] = couplings_.size();
-      for (const int a : vars) {
-        couplings_.push_back({a, pool});
-        pool += 3 * static_cast<size_t>(kept_dim_[a]);
-      }
+    variable_coupling_begin_.assign(reduced_.size() + 1, 0);
+    for (PointCoupling& coupling : couplings_) {
+      coupling.offset = pool;
+      pool += 3 * static_cast<size_t>(kept_dim_[coupling.reduced]);
+      ++variable_coupling_begin_[coupling.reduced + 1];
     }
-    coupling_begin_[points_.size()] = couplings_.size();
+    std::partial_sum(variable_coupling_begin_.begin(),
+                     variable_coupling_begin_.end(),
+                     variable_coupling_begin_.begin());
+    variable_couplings_.resize(couplings_.size());
+    std::vector<size_t> next(variable_coupling_begin_.begin(),
+                             variable_coupling_begin_.end() - 1);
+    for (size_t x = 0; x < couplings_.size(); ++x) {
+      variable_couplings_[next[couplings_[x].reduced]++] = x;
+    }
     coupling_pool_.assign(pool, 0.0);
   }
 
-  Eigen::MatrixXd& ReducedBlock(int a, int b) {
-    if (a > b) std::swap(a, b);
-    const auto [it, inserted] =
-        block_index_.emplace(PairKey(a, b), static_cast<int>(blocks_s_.size()));
-    if (inserted) {
-      blocks_s_.push_back(Eigen::MatrixXd::Zero(kept_dim_[a], kept_dim_[b]));
-      block_pairs_.emplace_back(a, b);
+  // f(a) once for every reduced variable with kept coordinates in row r (a
+  // variable's columns are contiguous, and so are its entries in a row).
+  template <typename F>
+  void ForEachRowVariable(int r, F&& f) const {
+    int last = -1;
+    for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
+      const ColumnOwner& owner = owners_[jacobian_.cols[e]];
+      if (owner.kept >= 0 && owner.reduced != last) {
+        last = owner.reduced;
+        f(last);
+      }
     }
-    return blocks_s_[it->second];
   }
 
-  PointCoupling* FindCoupling(int point, int a) {
-    PointCoupling* begin = couplings_.data() + coupling_begin_[point];
-    PointCoupling* end = couplings_.data() + coupling_begin_[point + 1];
+  const PointCoupling* FindCoupling(int point, int a) const {
+    const PointCoupling* begin = couplings_.data() + coupling_begin_[point];
+    const PointCoupling* end = couplings_.data() + coupling_begin_[point + 1];
     return std::lower_bound(
         begin, end, a,
         [](const PointCoupling& c, int value) { return c.reduced < value; });
   }
 
-  // A = J_c^T J_c and B_j, C_j row by row; then S = A - sum B_j C_j^-1 B_j^T.
-  void AssembleReducedSystem() {
-    point_rows_.assign(points_.size(), 0);
-    IndexCouplings();
-    point_information_.assign(points_.size(), Eigen::Matrix3d::Zero());
-    std::vector<Eigen::VectorXd> gradient(reduced_.size());
-    for (size_t a = 0; a < reduced_.size(); ++a) {
-      gradient[a] = Eigen::VectorXd::Zero(kept_dim_[a]);
+  Eigen::Map<PointBlock> Coupling(const PointCoupling& coupling) {
+    return {coupling_pool_.data() + coupling.offset,
+            kept_dim_[coupling.reduced], 3};
+  }
+  Eigen::Map<const PointBlock> Coupling(const PointCoupling& coupling) const {
+    return {coupling_pool_.data() + coupling.offset,
+            kept_dim_[coupling.reduced], 3};
+  }
+
+  // Row r's entries at its point's columns.
+  Eigen::Vector3d OnPoint(int r) const {
+    Eigen::Vector3d on_point = Eigen::Vector3d::Zero();
+    for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
+      const ColumnOwner& owner = owners_[jacobian_.cols[e]];
+      if (owner.point >= 0) on_point(owner.local) = jacobian_.values[e];
     }
-    std::vector<int> touched;
-    for (int r = 0; r < jacobian_.num_rows; ++r) {
-      touched.clear();
-      int point = -1;
-      Eigen::Vector3d on_point = Eigen::Vector3d::Zero();
+    return on_point;
+  }
+
+  // Point j's information C_j = J_j^T J_j.
+  Eigen::Matrix3d PointInformation(int j) const {
+    Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+    for (int x = point_row_begin_[j]; x < point_row_begin_[j + 1]; ++x) {
+      const Eigen::Vector3d on_point = OnPoint(point_rows_[x]);
+      information.noalias() += on_point * on_point.transpose();
+    }
+    return information;
+  }
+
+  // Point j's couplings B_j = J_c^T J_j, into the pool.
+  void AccumulateCouplings(int j) {
+    for (int x = point_row_begin_[j]; x < point_row_begin_[j + 1]; ++x) {
+      const int r = point_rows_[x];
+      const Eigen::Vector3d on_point = OnPoint(r);
       for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
         const ColumnOwner& owner = owners_[jacobian_.cols[e]];
-        const double value = jacobian_.values[e];
-        if (owner.point >= 0) {
-          point = owner.point;
-          on_point(owner.local) = value;
-        } else if (owner.kept >= 0) {
-          const int a = owner.reduced;
-          if (std::find(touched.begin(), touched.end(), a) == touched.end()) {
-            touched.push_back(a);
+        if (owner.kept < 0) continue;
+        Coupling(*FindCoupling(j, owner.reduced))
+            .row(owner.kept - KeptOffset(owner.reduced))
+            .noalias() += jacobian_.values[e] * on_point.transpose();
+      }
+    }
+  }
+
+  [[noreturn]] void ThrowUndetermined(int j) const {
+    const Eigen::Vector3d values =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(PointInformation(j))
+            .eigenvalues();
+    throw ErrorAt(points_[j].name, " is not determined by its ",
+                  point_row_begin_[j + 1] - point_row_begin_[j],
+                  " residuals (information eigenvalues ", values(0), ", ",
+                  values(1), ", ", values(2),
+                  "): seen once, or along parallel rays");
+  }
+
+  // S = A - sum_j B_j C_j^-1 B_j^T, with A = J_c^T J_c: the points one by
+  // one (C_j^-1 and B_j), then S's columns one by one. Each point and each
+  // column is one task's, so the sums are the same for any thread count.
+  void AssembleReducedSystem() {
+    IndexCouplings();
+    const int num_points = static_cast<int>(points_.size());
+    point_inverse_.resize(num_points);
+    std::vector<char> determined(num_points, 1);
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, num_points, 256),
+        [&](const tbb::blocked_range<int>& range) {
+          for (int j = range.begin(); j < range.end(); ++j) {
+            AccumulateCouplings(j);
+            const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(
+                PointInformation(j));
+            const Eigen::Vector3d values = eigen.eigenvalues();
+            if (!(values(0) > 1e-12 * values(2) && values(0) > 0.0)) {
+              determined[j] = 0;
+              continue;
+            }
+            point_inverse_[j] = eigen.eigenvectors() *
+                                values.cwiseInverse().asDiagonal() *
+                                eigen.eigenvectors().transpose();
           }
-          gradient[a](owner.kept - KeptOffset(a)) = value;
-        }
-      }
-      std::sort(touched.begin(), touched.end());
-      for (size_t x = 0; x < touched.size(); ++x) {
-        for (size_t y = x; y < touched.size(); ++y) {
-          ReducedBlock(touched[x], touched[y]).noalias() +=
-              gradient[touched[x]] * gradient[touched[y]].transpose();
-        }
-      }
-      if (point >= 0) {
-        point_information_[point].noalias() += on_point * on_point.transpose();
-        for (const int a : touched) {
-          PointCoupling* coupling = FindCoupling(point, a);
-          Eigen::Map<Eigen::MatrixXd> b(
-              coupling_pool_.data() + coupling->offset, kept_dim_[a], 3);
-          b.noalias() += gradient[a] * on_point.transpose();
-        }
-      }
-      for (const int a : touched) gradient[a].setZero();
+        });
+    for (int j = 0; j < num_points; ++j) {
+      if (!determined[j]) ThrowUndetermined(j);
     }
 
-    point_inverse_.resize(points_.size());
-    for (size_t j = 0; j < points_.size(); ++j) {
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(
-          point_information_[j]);
-      const Eigen::Vector3d values = eigen.eigenvalues();
-      if (!(values(0) > 1e-12 * values(2) && values(0) > 0.0)) {
-        throw ErrorAt(points_[j].name, " is not determined by its ",
-                      point_rows_[j], " residuals (information eigenvalues ",
-                      values(0), ", ", values(1), ", ", values(2),
-                      "): seen once, or along parallel rays");
+    columns_.assign(reduced_.size(), {});
+    tbb::enumerable_thread_specific<std::vector<int>> slots(
+        std::vector<int>(reduced_.size(), -1));
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, static_cast<int>(reduced_.size()), 1),
+        [&](const tbb::blocked_range<int>& range) {
+          std::vector<int>& slot = slots.local();
+          for (int b = range.begin(); b < range.end(); ++b) {
+            if (kept_dim_[b] > 0) AssembleColumn(b, &slot);
+          }
+        });
+    result_.num_point_coordinates = 3 * num_points;
+    result_.num_reduced_coordinates = num_kept_ + gauge_dimension_;
+  }
+
+  // S's column b: the blocks (a, b), a >= b, of every variable a sharing a
+  // row or a point with b; A's products row by row, then the points' terms
+  // point by point. `slot` is -1 for every variable on entry and exit.
+  void AssembleColumn(int b, std::vector<int>* slot) {
+    ReducedColumn& column = columns_[b];
+    const auto mark = [&](int a) {
+      if (a >= b && (*slot)[a] < 0) {
+        (*slot)[a] = 0;
+        column.rows.push_back(a);
       }
-      point_inverse_[j] = eigen.eigenvectors() *
-                          values.cwiseInverse().asDiagonal() *
-                          eigen.eigenvectors().transpose();
-      const size_t begin = coupling_begin_[j];
-      const size_t end = coupling_begin_[j + 1];
-      for (size_t x = begin; x < end; ++x) {
-        const int a = couplings_[x].reduced;
-        const Eigen::Map<const Eigen::MatrixXd> b_a(
-            coupling_pool_.data() + couplings_[x].offset, kept_dim_[a], 3);
-        const Eigen::MatrixXd b_a_c = b_a * point_inverse_[j];
-        for (size_t y = x; y < end; ++y) {
-          const int b = couplings_[y].reduced;
-          const Eigen::Map<const Eigen::MatrixXd> b_b(
-              coupling_pool_.data() + couplings_[y].offset, kept_dim_[b], 3);
-          ReducedBlock(a, b).noalias() -= b_a_c * b_b.transpose();
+    };
+    for (int x = variable_row_begin_[b]; x < variable_row_begin_[b + 1]; ++x) {
+      ForEachRowVariable(variable_rows_[x], mark);
+    }
+    for (size_t x = variable_coupling_begin_[b];
+         x < variable_coupling_begin_[b + 1]; ++x) {
+      const int j = couplings_[variable_couplings_[x]].point;
+      for (size_t y = coupling_begin_[j]; y < coupling_begin_[j + 1]; ++y) {
+        mark(couplings_[y].reduced);
+      }
+    }
+    std::sort(column.rows.begin(), column.rows.end());
+    const int kept_b = kept_dim_[b];
+    size_t size = 0;
+    for (size_t k = 0; k < column.rows.size(); ++k) {
+      (*slot)[column.rows[k]] = static_cast<int>(k);
+      column.offsets.push_back(size);
+      size += static_cast<size_t>(kept_dim_[column.rows[k]]) * kept_b;
+    }
+    column.values.assign(size, 0.0);
+
+    for (int x = variable_row_begin_[b]; x < variable_row_begin_[b + 1]; ++x) {
+      const int r = variable_rows_[x];
+      const int end = jacobian_.rows[r + 1];
+      // b's entries are contiguous in the row: [b_begin, b_end).
+      int b_begin = jacobian_.rows[r];
+      while (owners_[jacobian_.cols[b_begin]].reduced != b) ++b_begin;
+      int b_end = b_begin;
+      while (b_end < end && owners_[jacobian_.cols[b_end]].reduced == b) {
+        ++b_end;
+      }
+      for (int f = jacobian_.rows[r]; f < end; ++f) {
+        const ColumnOwner& on_a = owners_[jacobian_.cols[f]];
+        if (on_a.kept < 0 || on_a.reduced < b) continue;
+        const int a = on_a.reduced;
+        double* row_of_a = column.values.data() + column.offsets[(*slot)[a]] +
+                           (on_a.kept - KeptOffset(a));
+        for (int e = b_begin; e < b_end; ++e) {
+          const int kept = owners_[jacobian_.cols[e]].kept;
+          if (kept < 0) continue;
+          row_of_a[static_cast<size_t>(kept - KeptOffset(b)) * kept_dim_[a]] +=
+              jacobian_.values[f] * jacobian_.values[e];
         }
       }
     }
-    result_.num_point_coordinates = 3 * static_cast<int>(points_.size());
-    result_.num_reduced_coordinates = num_kept_ + gauge_dimension_;
+    Eigen::MatrixXd c_b(3, kept_b);  // C_j^-1 B_b^T
+    for (size_t x = variable_coupling_begin_[b];
+         x < variable_coupling_begin_[b + 1]; ++x) {
+      const PointCoupling& on_b = couplings_[variable_couplings_[x]];
+      const int j = on_b.point;
+      c_b.noalias() = point_inverse_[j] * Coupling(on_b).transpose();
+      for (size_t y = coupling_begin_[j]; y < coupling_begin_[j + 1]; ++y) {
+        const int a = couplings_[y].reduced;
+        if (a < b) continue;
+        double* block = column.values.data() + column.offsets[(*slot)[a]];
+        const double* coupling = coupling_pool_.data() + couplings_[y].offset;
+        if (kept_dim_[a] == 6 && kept_b == 6) {
+          // Two poses, most of the pairs: fixed sizes let Eigen unroll.
+          Eigen::Map<Eigen::Matrix<double, 6, 6>>(block).noalias() -=
+              Eigen::Map<const Eigen::Matrix<double, 6, 3>>(coupling) *
+              Eigen::Map<const Eigen::Matrix<double, 3, 6>>(c_b.data());
+        } else {
+          Block(column, (*slot)[a], kept_dim_[a], kept_b).noalias() -=
+              Coupling(couplings_[y]).lazyProduct(c_b);
+        }
+      }
+    }
+    for (const int a : column.rows) (*slot)[a] = -1;
+  }
+
+  static Eigen::Map<Eigen::MatrixXd> Block(ReducedColumn& column, int k,
+                                           int rows, int cols) {
+    return {column.values.data() + column.offsets[k], rows, cols};
   }
 
   void ComputeKeptOffsets() {
@@ -609,29 +803,19 @@ class Computation {
   int KeptOffset(int a) const { return kept_offset_[a]; }
 
   void Factor() {
-    for (size_t a = 0; a < reduced_.size(); ++a) {
-      if (kept_dim_[a] > 0 && block_index_.count(PairKey(a, a)) == 0) {
-        throw ErrorAt(reduced_[a].name,
+    size_t nonzeros = 0;
+    for (size_t b = 0; b < reduced_.size(); ++b) {
+      if (kept_dim_[b] > 0 && BlockPosition(b, b) < 0) {
+        throw ErrorAt(reduced_[b].name,
                       " is in no residual: its covariance is undefined");
       }
-    }
-    // Upper triangle, column by column: blocks sorted by (column, row).
-    std::vector<int> order(block_pairs_.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int x, int y) {
-      return std::make_pair(block_pairs_[x].second, block_pairs_[x].first) <
-             std::make_pair(block_pairs_[y].second, block_pairs_[y].first);
-    });
-    std::vector<std::vector<int>> column_blocks(reduced_.size());
-    size_t nonzeros = 0;
-    for (const int index : order) {
-      const auto [a, b] = block_pairs_[index];
-      column_blocks[b].push_back(index);
-      nonzeros += static_cast<size_t>(kept_dim_[a]) * kept_dim_[b];
+      for (const int a : columns_[b].rows) {
+        nonzeros += static_cast<size_t>(kept_dim_[a]) * kept_dim_[b];
+      }
     }
     cholmod_common* common = cholmod_.get();
     std::unique_ptr<cholmod_sparse, CholmodDeleter> s(
-        cholmod_allocate_sparse(num_kept_, num_kept_, nonzeros, 1, 1, 1,
+        cholmod_allocate_sparse(num_kept_, num_kept_, nonzeros, 1, 1, -1,
                                 CHOLMOD_REAL, common),
         CholmodDeleter{common});
     if (!s) throw ErrorAt("out of memory for the reduced system");
@@ -640,14 +824,15 @@ class Computation {
     double* value = static_cast<double*>(s->x);
     int entry = 0;
     for (size_t b = 0; b < reduced_.size(); ++b) {
+      ReducedColumn& column = columns_[b];
       for (int cb = 0; cb < kept_dim_[b]; ++cb) {
-        const int column = KeptOffset(b) + cb;
-        column_start[column] = entry;
-        for (const int index : column_blocks[b]) {
-          const int a = block_pairs_[index].first;
-          const Eigen::MatrixXd& block = blocks_s_[index];
-          const int rows = a == static_cast<int>(b) ? cb + 1 : kept_dim_[a];
-          for (int ra = 0; ra < rows; ++ra) {
+        column_start[KeptOffset(b) + cb] = entry;
+        for (size_t k = 0; k < column.rows.size(); ++k) {
+          const int a = column.rows[k];
+          const auto block =
+              Block(column, static_cast<int>(k), kept_dim_[a], kept_dim_[b]);
+          const int first = a == static_cast<int>(b) ? cb : 0;
+          for (int ra = first; ra < kept_dim_[a]; ++ra) {
             row_index[entry] = KeptOffset(a) + ra;
             value[entry] = block(ra, cb);
             ++entry;
@@ -730,13 +915,22 @@ class Computation {
         kept_locals_[owner.reduced].push_back(owner.local);
       }
     }
-    // Every block of S: the marginals (a, a) and the co-visible pairs, which
-    // the points need.
-    covariance_blocks_.resize(blocks_s_.size());
-    for (size_t index = 0; index < block_pairs_.size(); ++index) {
-      const auto [a, b] = block_pairs_[index];
-      covariance_blocks_[index] = KeptBlock(inverse, a, b);
-    }
+    // S^-1 at every block of S: the marginals (a, a) and the co-visible
+    // pairs, which the points need.
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, static_cast<int>(reduced_.size()), 1),
+        [&](const tbb::blocked_range<int>& range) {
+          for (int b = range.begin(); b < range.end(); ++b) {
+            ReducedColumn& column = columns_[b];
+            column.inverse.resize(column.values.size());
+            for (size_t k = 0; k < column.rows.size(); ++k) {
+              const int a = column.rows[k];
+              Eigen::Map<Eigen::MatrixXd>(
+                  column.inverse.data() + column.offsets[k], kept_dim_[a],
+                  kept_dim_[b]) = KeptBlock(inverse, a, b);
+            }
+          }
+        });
     result_.reduced.resize(reduced_.size());
     for (size_t a = 0; a < reduced_.size(); ++a) {
       if (kept_dim_[a] == 0) {
@@ -744,23 +938,28 @@ class Computation {
             Eigen::MatrixXd::Zero(reduced_dim_[a], reduced_dim_[a]);
         continue;
       }
-      result_.reduced[a] =
-          Embed(a, a, covariance_blocks_[block_index_.at(PairKey(a, a))]);
+      result_.reduced[a] = Embed(a, a, InverseBlock(a, a));
     }
     if (options_.covisible_cross) {
-      for (size_t index = 0; index < block_pairs_.size(); ++index) {
-        const auto [a, b] = block_pairs_[index];
-        if (a == b) continue;
-        result_.cross[{a, b}] = Embed(a, b, covariance_blocks_[index]);
+      for (size_t b = 0; b < reduced_.size(); ++b) {
+        for (const int a : columns_[b].rows) {
+          if (a == static_cast<int>(b)) continue;
+          result_.cross[{static_cast<int>(b), a}] =
+              Embed(b, a, InverseBlock(a, b).transpose());
+        }
       }
     }
     if (options_.point_marginals || gauge_dimension_ > 0) {
       result_.points.resize(points_.size());
-      for (size_t j = 0; j < points_.size(); ++j) {
-        const Eigen::Vector3d d = PointScale(static_cast<int>(j));
-        result_.points[j] = d.asDiagonal() *
-                            PointMarginal(static_cast<int>(j)) * d.asDiagonal();
-      }
+      tbb::parallel_for(
+          tbb::blocked_range<int>(0, static_cast<int>(points_.size()), 256),
+          [&](const tbb::blocked_range<int>& range) {
+            for (int j = range.begin(); j < range.end(); ++j) {
+              const Eigen::Vector3d d = PointScale(j);
+              result_.points[j] =
+                  d.asDiagonal() * PointMarginal(j) * d.asDiagonal();
+            }
+          });
     }
     for (size_t a = 0; a < reduced_.size(); ++a) {
       const Eigen::VectorXd d = ReducedScale(static_cast<int>(a));
@@ -772,25 +971,43 @@ class Computation {
     }
   }
 
+  // Where block (a, b), a >= b, is in column b, or -1.
+  int BlockPosition(int a, int b) const {
+    const std::vector<int>& rows = columns_[b].rows;
+    const auto found = std::lower_bound(rows.begin(), rows.end(), a);
+    return found != rows.end() && *found == a
+               ? static_cast<int>(found - rows.begin())
+               : -1;
+  }
+
+  // S^-1's block (a, b), a >= b, in kept coordinates.
+  Eigen::Map<const Eigen::MatrixXd> InverseBlock(int a, int b) const {
+    const int k = BlockPosition(a, b);
+    if (k < 0) {
+      throw ErrorAt("internal: no covariance block for ", reduced_[a].name,
+                    " and ", reduced_[b].name);
+    }
+    return {columns_[b].inverse.data() + columns_[b].offsets[k], kept_dim_[a],
+            kept_dim_[b]};
+  }
+
   // Sigma_j = C^-1 + C^-1 (sum_ab B_a^T Z_ab B_b) C^-1, B_a = Lambda's block.
   Eigen::Matrix3d PointMarginal(int j) const {
     Eigen::Matrix3d inner = Eigen::Matrix3d::Zero();
-    const size_t begin = coupling_begin_[j];
-    const size_t end = coupling_begin_[j + 1];
-    for (size_t x = begin; x < end; ++x) {
+    for (size_t x = coupling_begin_[j]; x < coupling_begin_[j + 1]; ++x) {
       const int a = couplings_[x].reduced;
-      const Eigen::Map<const Eigen::MatrixXd> b_a(
-          coupling_pool_.data() + couplings_[x].offset, kept_dim_[a], 3);
-      for (size_t y = begin; y < end; ++y) {
+      const auto b_a = Coupling(couplings_[x]);
+      for (size_t y = coupling_begin_[j]; y < coupling_begin_[j + 1]; ++y) {
         const int b = couplings_[y].reduced;
-        const Eigen::Map<const Eigen::MatrixXd> b_b(
-            coupling_pool_.data() + couplings_[y].offset, kept_dim_[b], 3);
-        const Eigen::MatrixXd& z = covariance_blocks_[block_index_.at(
-            PairKey(std::min(a, b), std::max(a, b)))];
-        if (a <= b) {
-          inner.noalias() += b_a.transpose() * z * b_b;
-        } else {
-          inner.noalias() += b_a.transpose() * z.transpose() * b_b;
+        const auto b_b = Coupling(couplings_[y]);
+        // Z_ab column by column: no temporaries for any block size.
+        const auto z = InverseBlock(std::max(a, b), std::min(a, b));
+        for (int q = 0; q < kept_dim_[b]; ++q) {
+          const Eigen::Vector3d b_a_z =
+              a >= b ? Eigen::Vector3d(b_a.transpose().lazyProduct(z.col(q)))
+                     : Eigen::Vector3d(
+                           b_a.transpose().lazyProduct(z.row(q).transpose()));
+          inner.noalias() += b_a_z * b_b.row(q);
         }
       }
     }
@@ -966,17 +1183,20 @@ class Computation {
   int gauge_dimension_ = 0;
   Eigen::MatrixXd null_basis_;  // orthonormal, Jacobian column order
 
+  // Jacobian rows by point and by reduced variable (CSR, ascending).
+  std::vector<int> point_row_begin_;
   std::vector<int> point_rows_;
+  std::vector<int> variable_row_begin_;
+  std::vector<int> variable_rows_;
+  // Couplings by point, and their indices by reduced variable.
   std::vector<PointCoupling> couplings_;
   std::vector<size_t> coupling_begin_;
+  std::vector<size_t> variable_coupling_begin_;
+  std::vector<size_t> variable_couplings_;
   std::vector<double> coupling_pool_;
-  std::vector<Eigen::Matrix3d> point_information_;
   std::vector<Eigen::Matrix3d> point_inverse_;
 
-  std::unordered_map<uint64_t, int> block_index_;
-  std::vector<std::pair<int, int>> block_pairs_;
-  std::vector<Eigen::MatrixXd> blocks_s_;
-  std::vector<Eigen::MatrixXd> covariance_blocks_;
+  std::vector<ReducedColumn> columns_;
 
   CholmodCommon cholmod_;
   std::unique_ptr<cholmod_factor, CholmodDeleter> factor_{
