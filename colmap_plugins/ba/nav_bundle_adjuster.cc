@@ -111,16 +111,31 @@ double NavSigma(const std::vector<ImagePosePrior>& priors) {
   return std::sqrt(sum / priors.size());
 }
 
+std::string NoConvergenceWarning(int max_num_iterations, int last_iterations,
+                                 double earlier_cost, double final_cost) {
+  // A final cost of 0 (exact data) has no relative decrease to give.
+  const std::string decrease =
+      final_cost > 0.0
+          ? fmt::format("{:.2g} times its final value",
+                        (earlier_cost - final_cost) / final_cost)
+          : fmt::format("{:.2g} to a final cost of 0", earlier_cost);
+  return fmt::format(
+      "the adjustment stopped at its iteration limit "
+      "(--BundleAdjustment.max_num_iterations {}) before converging: its "
+      "last {} iterations still lowered the cost by {}. Along its weakest "
+      "directions the model may still be far from the minimum (a 100 m "
+      "single pass without navigation: 1-2 m), and its covariance describes "
+      "the minimum, not this model. Raise "
+      "--BundleAdjustment.max_num_iterations",
+      max_num_iterations, last_iterations, decrease);
+}
+
 namespace {
 
-// Levenberg-Marquardt crawls along a long survey's weak, curved directions
-// (a strip's bending and scale): on the scarp plan without navigation,
-// stopped at the limit of 100, the 86 iterations it still needed lowered
-// the cost by 5e-6 of itself and moved the cameras by 1-2 m. COLMAP reports
-// NO_CONVERGENCE and carries on; a model that far from its minimum is not
-// what its covariance describes.
-std::string NoConvergenceWarning(const ceres::Solver::Summary& summary,
-                                 int max_num_iterations) {
+// The warning above from a solve's summary: the decrease over its last 10
+// iterations.
+std::string IterationLimitWarning(const ceres::Solver::Summary& summary,
+                                  int max_num_iterations) {
   constexpr int kLastIterations = 10;
   const std::vector<ceres::IterationSummary>& iterations = summary.iterations;
   const int last = std::max(
@@ -129,16 +144,8 @@ std::string NoConvergenceWarning(const ceres::Solver::Summary& summary,
   const double earlier = iterations.empty()
                              ? summary.final_cost
                              : iterations[iterations.size() - 1 - last].cost;
-  return fmt::format(
-      "the adjustment stopped at its iteration limit "
-      "(--BundleAdjustment.max_num_iterations {}) before converging: its "
-      "last {} iterations still lowered the cost by {:.2g} times its final "
-      "value. Along its weakest directions the model may still be far from "
-      "the minimum (a 100 m single pass without navigation: 1-2 m), and its "
-      "covariance describes the minimum, not this model. Raise "
-      "--BundleAdjustment.max_num_iterations",
-      max_num_iterations, last,
-      (earlier - summary.final_cost) / summary.final_cost);
+  return NoConvergenceWarning(max_num_iterations, last, earlier,
+                              summary.final_cost);
 }
 
 using Clock = std::chrono::steady_clock;
@@ -993,7 +1000,7 @@ NavBundleAdjustmentReport Adjustment::Run() {
   report.termination = ceres::TerminationTypeToString(summary.termination_type);
   if (summary.termination_type == ceres::NO_CONVERGENCE) {
     report.warnings.push_back(
-        NoConvergenceWarning(summary, options_.max_num_iterations));
+        IterationLimitWarning(summary, options_.max_num_iterations));
   }
   report.solver = std::string(ceres::LinearSolverTypeToString(
                       summary.linear_solver_type_used)) +

@@ -186,6 +186,17 @@ std::vector<int> ConstantCameraParams(const NavBundleAdjustmentOptions& options,
 // (0 without priors).
 double NavSigma(const std::vector<ImagePosePrior>& priors);
 
+// The warning of a solve stopped at its iteration limit, whose last
+// `last_iterations` lowered the cost from `earlier_cost` to `final_cost`.
+// Levenberg-Marquardt crawls along a long survey's weak, curved directions
+// (a strip's bending and scale): on the scarp plan without navigation,
+// stopped at the limit of 100, the 86 iterations it still needed lowered
+// the cost by 5e-6 of itself and moved the cameras by 1-2 m. COLMAP reports
+// NO_CONVERGENCE and carries on; a model that far from its minimum is not
+// what its covariance describes.
+std::string NoConvergenceWarning(int max_num_iterations, int last_iterations,
+                                 double earlier_cost, double final_cost);
+
 // Adjusts `reconstruction` in place. Priors name images of the model
 // (unknown ids throw uw::Error before anything changes). With a rig,
 // `image_times` (seconds, one clock) must hold every image of the rig's

@@ -65,6 +65,20 @@ TEST(NavBundleAdjuster, ASolveStoppedAtItsIterationLimitWarns) {
   EXPECT_TRUE(converged.warnings.empty());
 }
 
+TEST(NavBundleAdjuster, TheIterationLimitWarningSaysHowMuchTheCostStillFell) {
+  const std::string falling = NoConvergenceWarning(100, 10, 1.5, 1.0);
+  EXPECT_NE(falling.find("last 10 iterations still lowered the cost by 0.5 "
+                         "times its final value"),
+            std::string::npos)
+      << falling;
+  // Exact data: no relative decrease, and no inf or nan in the message.
+  const std::string to_zero = NoConvergenceWarning(100, 10, 2e-12, 0.0);
+  EXPECT_NE(to_zero.find("by 2e-12 to a final cost of 0"), std::string::npos)
+      << to_zero;
+  EXPECT_EQ(to_zero.find("inf"), std::string::npos) << to_zero;
+  EXPECT_EQ(to_zero.find("nan"), std::string::npos) << to_zero;
+}
+
 TEST(NavBundleAdjuster, PriorsPlaceTheModelInTheWorld) {
   test::TestSceneOptions scene_options;
   const test::TestScene scene = test::MakeTestScene(scene_options);
