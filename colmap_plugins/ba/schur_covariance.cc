@@ -497,14 +497,17 @@ class Computation {
   }
 
   // The reduced variables with kept coordinates that point j's rows see,
-  // ascending, into *vars.
+  // ascending, into *vars (through a held coordinate too: its B_j block is
+  // then zero, but the pair stays co-visible).
   void CoupledVariables(int j, std::vector<int>* vars) const {
     vars->clear();
     for (int x = point_row_begin_[j]; x < point_row_begin_[j + 1]; ++x) {
       const int r = point_rows_[x];
       for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
         const ColumnOwner& owner = owners_[jacobian_.cols[e]];
-        if (owner.kept >= 0) vars->push_back(owner.reduced);
+        if (owner.reduced >= 0 && kept_dim_[owner.reduced] > 0) {
+          vars->push_back(owner.reduced);
+        }
       }
     }
     std::sort(vars->begin(), vars->end());
@@ -516,6 +519,17 @@ class Computation {
   // that what is summed from them is summed in one order for any number of
   // threads.
   void IndexCouplings() {
+    // A variable's columns are contiguous (ListColumns), so its entries are
+    // contiguous in a row whose columns ascend, as Ceres writes them; the
+    // row scans below rely on it.
+    for (int r = 0; r < jacobian_.num_rows; ++r) {
+      for (int e = jacobian_.rows[r] + 1; e < jacobian_.rows[r + 1]; ++e) {
+        if (jacobian_.cols[e] <= jacobian_.cols[e - 1]) {
+          throw ErrorAt("internal: the Jacobian's row ", r,
+                        " has columns out of order");
+        }
+      }
+    }
     const int num_points = static_cast<int>(points_.size());
     std::vector<int> row_point(jacobian_.num_rows);
     point_row_begin_.assign(num_points + 1, 0);

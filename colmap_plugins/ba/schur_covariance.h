@@ -70,8 +70,10 @@ struct SchurCovarianceOptions {
   // downstream (the laser scale) re-samples a model with. 0: none.
   int num_samples = 0;
   uint64_t sample_seed = 0;  // the draws depend on it alone (any threads)
-  // Threads evaluating the Jacobian. Each residual block writes its own
-  // rows, so the result is the same for any count.
+  // Threads evaluating the Jacobian and assembling the reduced system and
+  // the points' marginals. Each residual block writes its own rows, and each
+  // point and each column of the reduced system is one task's, summed in a
+  // fixed order, so the result is the same for any count.
   int num_threads = 1;
 
   void Check() const;

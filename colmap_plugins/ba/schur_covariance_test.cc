@@ -106,12 +106,38 @@ TEST(SchurCovariance, IsTheSameForAnyThreadCount) {
   for (size_t j = 0; j < a.points.size(); ++j) {
     EXPECT_TRUE(a.points[j] == b.points[j]) << "point " << j;
   }
-  EXPECT_EQ(a.cross.size(), b.cross.size());
+  ASSERT_EQ(a.cross.size(), b.cross.size());
+  for (const auto& [pair, block] : a.cross) {
+    ASSERT_EQ(b.cross.count(pair), 1u);
+    EXPECT_TRUE(block == b.cross.at(pair))
+        << "cross " << pair.first << ", " << pair.second;
+  }
   const Eigen::MatrixXd information = problem.DenseInformation();
   Eigen::MatrixXd ours;
   Eigen::MatrixXd mask;
   problem.Scatter(a, &ours, &mask);
   EXPECT_LT(RelativeError(ours, information.inverse(), mask), 1e-9);
+  // A free network (held coordinates, the gauge projection) and its draws.
+  SmallProblem free(Gauge::kFree, false, false, 3, 600);
+  SchurCovarianceOptions free_one = WithCross();
+  free_one.num_samples = 20;
+  free.FillNullSpace(&free_one);
+  SchurCovarianceOptions free_four = free_one;
+  free_four.num_threads = 4;
+  const SchurCovariance c = ComputeSchurCovariance(
+      &free.problem(), free.reduced(), free.points(), free_one);
+  const SchurCovariance d = ComputeSchurCovariance(
+      &free.problem(), free.reduced(), free.points(), free_four);
+  ASSERT_EQ(c.reduced.size(), d.reduced.size());
+  for (size_t k = 0; k < c.reduced.size(); ++k) {
+    EXPECT_TRUE(c.reduced[k] == d.reduced[k]) << "free, reduced " << k;
+  }
+  ASSERT_EQ(c.points.size(), d.points.size());
+  for (size_t j = 0; j < c.points.size(); ++j) {
+    EXPECT_TRUE(c.points[j] == d.points[j]) << "free, point " << j;
+  }
+  EXPECT_TRUE(c.samples == d.samples);
+
   four.num_threads = 0;
   ExpectErrorContaining(
       [&] {
