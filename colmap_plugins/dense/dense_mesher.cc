@@ -228,7 +228,8 @@ DenseMeshResult DenseMesh(const Reconstruction& model,
   }
   result.poisson_depth = options.poisson.depth;
   const TriangleMesh surface =
-      PoissonSurface(result.points, options.poisson, work_dir);
+      PoissonSurface(result.points, options.poisson, work_dir,
+                     &result.poisson_non_finite_vertices);
   result.seconds["poisson"] = stopwatch.Lap();
 
   if (!(options.trimming.max_distance > 0.0)) {

@@ -53,6 +53,9 @@ struct DenseMeshResult {
   size_t num_depth_maps = 0;  // images with neighbours and a depth range
   double voxel_size = 0.0;
   int poisson_depth = 0;
+  // Non-finite vertices in colmap's Poisson surface, dropped with their
+  // triangles before trimming.
+  size_t poisson_non_finite_vertices = 0;
   // Wall-clock seconds per stage, by stage name.
   std::map<std::string, double> seconds;
 };

@@ -59,7 +59,8 @@ void WriteOrientedPly(const OrientedPoints& points,
 
 TriangleMesh PoissonSurface(const OrientedPoints& points,
                             const PoissonOptions& options,
-                            const std::filesystem::path& work_dir) {
+                            const std::filesystem::path& work_dir,
+                            size_t* num_dropped_vertices) {
   options.Check();
   if (points.points.size() < 100) {
     throw ErrorAt("Poisson surface: only ", points.points.size(),
@@ -90,7 +91,7 @@ TriangleMesh PoissonSurface(const OrientedPoints& points,
     throw ErrorAt(options.colmap_path, " poisson_mesher failed (exit ", code,
                   "; log ", log.string(), "):\n", TailOfFile(log, 10));
   }
-  TriangleMesh mesh = ReadPly(output);
+  TriangleMesh mesh = ReadPlyDroppingNonFinite(output, num_dropped_vertices);
   for (Eigen::Vector3d& vertex : mesh.vertices) {
     vertex += origin;
   }

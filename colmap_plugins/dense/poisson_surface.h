@@ -31,9 +31,12 @@ struct PoissonOptions {
 // Writes the points (recentred, float) to work_dir/fused.ply, runs colmap
 // (log: work_dir/poisson_mesher.log) and reads work_dir/poisson.ply back in
 // the points' frame. Throws uw::Error with the log's tail if colmap fails.
+// Non-finite vertices colmap leaves are dropped with their triangles
+// (ReadPlyDroppingNonFinite), counted in *num_dropped_vertices when given.
 TriangleMesh PoissonSurface(const OrientedPoints& points,
                             const PoissonOptions& options,
-                            const std::filesystem::path& work_dir);
+                            const std::filesystem::path& work_dir,
+                            size_t* num_dropped_vertices = nullptr);
 
 // Oriented points as binary PLY (x y z nx ny nz as float and a grey
 // red green blue, as colmap's stereo_fusion writes them), shifted by -origin;

@@ -115,6 +115,12 @@ void RunDenseMesher(const DenseMesherCommandOptions& options) {
       "fused points, Poisson depth {}\n",
       result.num_depth_maps, result.num_images, result.voxel_size,
       result.points.points.size(), result.poisson_depth);
+  if (result.poisson_non_finite_vertices > 0) {
+    fmt::print(
+        "[dense_mesher] colmap's Poisson surface had {} non-finite vertices; "
+        "they were dropped with their triangles (small holes there)\n",
+        result.poisson_non_finite_vertices);
+  }
   std::string times;
   for (const auto& [stage, seconds] : result.seconds) {
     times +=

@@ -295,13 +295,18 @@ Layout FindLayout(const Header& header, const std::string& source) {
 // and validates them.
 class MeshBuilder {
  public:
-  MeshBuilder(const Layout& layout, const std::string& source)
-      : layout_(layout), source_(source) {}
+  MeshBuilder(const Layout& layout, const std::string& source,
+              bool drop_non_finite)
+      : layout_(layout), source_(source), drop_non_finite_(drop_non_finite) {}
 
   void AddVertex(const double (&xyz)[3], const Where& where) {
     for (const double coordinate : xyz) {
       if (!std::isfinite(coordinate)) {
-        throw ErrorAt(source_, ": ", where, ": non-finite vertex coordinate");
+        if (!drop_non_finite_) {
+          throw ErrorAt(source_, ": ", where, ": non-finite vertex coordinate");
+        }
+        ++num_non_finite_;
+        break;
       }
     }
     mesh_.vertices.emplace_back(xyz[0], xyz[1], xyz[2]);
@@ -330,11 +335,32 @@ class MeshBuilder {
     }
   }
 
-  TriangleMesh Take() { return std::move(mesh_); }
+  // The mesh, without its non-finite vertices and the faces that use them
+  // (counted in *num_dropped when given).
+  TriangleMesh Take(size_t* num_dropped) {
+    if (num_dropped != nullptr) *num_dropped = num_non_finite_;
+    if (num_non_finite_ == 0) return std::move(mesh_);
+    TriangleMesh kept;
+    std::vector<int> new_index(mesh_.vertices.size(), -1);
+    for (size_t v = 0; v < mesh_.vertices.size(); ++v) {
+      if (!mesh_.vertices[v].allFinite()) continue;
+      new_index[v] = static_cast<int>(kept.vertices.size());
+      kept.vertices.push_back(mesh_.vertices[v]);
+    }
+    for (const Eigen::Vector3i& triangle : mesh_.triangles) {
+      const Eigen::Vector3i renumbered(new_index[triangle(0)],
+                                       new_index[triangle(1)],
+                                       new_index[triangle(2)]);
+      if (renumbered.minCoeff() >= 0) kept.triangles.push_back(renumbered);
+    }
+    return kept;
+  }
 
  private:
   const Layout& layout_;
   const std::string& source_;
+  const bool drop_non_finite_;
+  size_t num_non_finite_ = 0;
   TriangleMesh mesh_;
 };
 
@@ -345,8 +371,9 @@ bool ParseNumber(std::string_view token, T* value) {
 }
 
 TriangleMesh ReadAscii(const std::string& data, const Header& header,
-                       const Layout& layout, const std::string& source) {
-  MeshBuilder builder(layout, source);
+                       const Layout& layout, const std::string& source,
+                       size_t* num_dropped) {
+  MeshBuilder builder(layout, source, num_dropped != nullptr);
   LineReader reader(data);
   std::string_view line;
   while (reader.pos() < header.data_offset) reader.Next(&line);
@@ -422,7 +449,7 @@ TriangleMesh ReadAscii(const std::string& data, const Header& header,
                     ": data after the last element");
     }
   }
-  return builder.Take();
+  return builder.Take(num_dropped);
 }
 
 // Sequential reader over the binary body; errors name the byte offset.
@@ -483,8 +510,9 @@ class BinaryReader {
 };
 
 TriangleMesh ReadBinary(const std::string& data, const Header& header,
-                        const Layout& layout, const std::string& source) {
-  MeshBuilder builder(layout, source);
+                        const Layout& layout, const std::string& source,
+                        size_t* num_dropped) {
+  MeshBuilder builder(layout, source, num_dropped != nullptr);
   BinaryReader reader(data, header.data_offset, source);
   std::vector<int64_t> indices;
   for (const Element& element : header.elements) {
@@ -542,7 +570,7 @@ TriangleMesh ReadBinary(const std::string& data, const Header& header,
     throw ErrorAt(source, ": byte ", reader.pos(), ": ", reader.remaining(),
                   " bytes after the last element");
   }
-  return builder.Take();
+  return builder.Take(num_dropped);
 }
 
 template <typename T>
@@ -624,13 +652,31 @@ void WritePly(const TriangleMesh& mesh, const std::filesystem::path& path) {
       /*binary=*/true);
 }
 
-TriangleMesh ReadPly(const std::filesystem::path& path) {
+namespace {
+
+// num_dropped: null refuses non-finite vertices, otherwise drops them.
+TriangleMesh ReadPlyFile(const std::filesystem::path& path,
+                         size_t* num_dropped) {
   const std::string source = path.string();
   const std::string data = ReadFileToString(path);
   const Header header = ParseHeader(data, source);
   const Layout layout = FindLayout(header, source);
-  return header.binary ? ReadBinary(data, header, layout, source)
-                       : ReadAscii(data, header, layout, source);
+  return header.binary ? ReadBinary(data, header, layout, source, num_dropped)
+                       : ReadAscii(data, header, layout, source, num_dropped);
+}
+
+}  // namespace
+
+TriangleMesh ReadPly(const std::filesystem::path& path) {
+  return ReadPlyFile(path, nullptr);
+}
+
+TriangleMesh ReadPlyDroppingNonFinite(const std::filesystem::path& path,
+                                      size_t* num_dropped) {
+  size_t dropped = 0;
+  TriangleMesh mesh = ReadPlyFile(path, &dropped);
+  if (num_dropped != nullptr) *num_dropped = dropped;
+  return mesh;
 }
 
 TriangleMesh ReadObj(const std::filesystem::path& path) {

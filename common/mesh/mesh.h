@@ -27,6 +27,14 @@ void WritePly(const TriangleMesh& mesh, const std::filesystem::path& path);
 // vertices and triangle faces; throws uw::Error naming the file otherwise.
 TriangleMesh ReadPly(const std::filesystem::path& path);
 
+// ReadPly for a mesher's output: a non-finite vertex is dropped, with every
+// face that uses it, instead of refused; *num_dropped (when given) counts
+// them. colmap's Poisson (PoissonRecon 8.0) leaves a few NaN vertices on
+// some clouds (4 of 236 015 on one uwsim survey); a user's mesh with one is
+// still an error (ReadPly).
+TriangleMesh ReadPlyDroppingNonFinite(const std::filesystem::path& path,
+                                      size_t* num_dropped);
+
 // Wavefront OBJ: "v x y z" vertices and "f" faces (indices 1-based or
 // negative, with or without /texture/normal parts; polygons are fanned into
 // triangles); other statements are ignored. Throws uw::Error naming the

@@ -210,6 +210,34 @@ TEST_F(MeshTest, RejectsMalformedHeaders) {
             std::string::npos);
 }
 
+// A mesher's NaN vertex goes with its faces; the rest is renumbered.
+TEST_F(MeshTest, DropsNonFiniteVerticesWithTheirFacesWhenAsked) {
+  const std::string content =
+      "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 3\n"
+      "property list uchar int vertex_indices\nend_header\n"
+      "0 0 0\nnan 0 0\n1 0 0\n0 1 0\n1 1 inf\n"
+      "3 0 2 3\n3 0 1 2\n3 2 4 3\n";
+  const std::filesystem::path path = Write("nan.ply", content);
+  EXPECT_NE(ReadError(content).find("(vertex 1): non-finite vertex coordinate"),
+            std::string::npos);
+  size_t dropped = 0;
+  const TriangleMesh mesh = ReadPlyDroppingNonFinite(path, &dropped);
+  EXPECT_EQ(dropped, 2u);
+  ASSERT_EQ(mesh.vertices.size(), 3u);
+  EXPECT_EQ(mesh.vertices[1], Eigen::Vector3d(1, 0, 0));
+  ASSERT_EQ(mesh.triangles.size(), 1u);
+  EXPECT_EQ(mesh.triangles[0], Eigen::Vector3i(0, 1, 2));
+  // A finite mesh reads as ReadPly reads it.
+  const std::string finite =
+      std::string(kAsciiHeader) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const TriangleMesh same =
+      ReadPlyDroppingNonFinite(Write("finite.ply", finite), &dropped);
+  EXPECT_EQ(dropped, 0u);
+  EXPECT_EQ(same.vertices.size(), 3u);
+  EXPECT_EQ(same.triangles.size(), 1u);
+}
+
 TEST_F(MeshTest, RejectsMalformedAsciiData) {
   const std::string header = kAsciiHeader;
   EXPECT_NE(ReadError(header + "0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n")
