@@ -2,6 +2,7 @@
 
 #include <iostream>
 #include <memory>
+#include <string>
 
 #include <Eigen/Dense>
 #include <Eigen/SVD>
@@ -86,7 +87,28 @@ TEST(SchurCovariance, IllConditionedProblemsLoseAt1e8To1e7) {
   }
 }
 
-// The Jacobian evaluated on several threads gives the same bits, and the
+// Every marginal, co-visible block and draw of `a` equals `b`'s bit for bit.
+void ExpectSameBits(const SchurCovariance& a, const SchurCovariance& b,
+                    const std::string& what) {
+  ASSERT_EQ(a.reduced.size(), b.reduced.size()) << what;
+  for (size_t k = 0; k < a.reduced.size(); ++k) {
+    EXPECT_TRUE(a.reduced[k] == b.reduced[k])
+        << what << ", reduced variable " << k;
+  }
+  ASSERT_EQ(a.points.size(), b.points.size()) << what;
+  for (size_t j = 0; j < a.points.size(); ++j) {
+    EXPECT_TRUE(a.points[j] == b.points[j]) << what << ", point " << j;
+  }
+  ASSERT_EQ(a.cross.size(), b.cross.size()) << what;
+  for (const auto& [pair, block] : a.cross) {
+    ASSERT_EQ(b.cross.count(pair), 1u) << what;
+    EXPECT_TRUE(block == b.cross.at(pair))
+        << what << ", cross " << pair.first << ", " << pair.second;
+  }
+  EXPECT_TRUE(a.samples == b.samples) << what;
+}
+
+// The Jacobian and the assembly on several threads give the same bits, and the
 // dense inverse's (a well-conditioned problem: held cameras, fixed
 // intrinsics).
 TEST(SchurCovariance, IsTheSameForAnyThreadCount) {
@@ -98,20 +120,7 @@ TEST(SchurCovariance, IsTheSameForAnyThreadCount) {
       &problem.problem(), problem.reduced(), problem.points(), one);
   const SchurCovariance b = ComputeSchurCovariance(
       &problem.problem(), problem.reduced(), problem.points(), four);
-  ASSERT_EQ(a.reduced.size(), b.reduced.size());
-  for (size_t k = 0; k < a.reduced.size(); ++k) {
-    EXPECT_TRUE(a.reduced[k] == b.reduced[k]) << "reduced variable " << k;
-  }
-  ASSERT_EQ(a.points.size(), b.points.size());
-  for (size_t j = 0; j < a.points.size(); ++j) {
-    EXPECT_TRUE(a.points[j] == b.points[j]) << "point " << j;
-  }
-  ASSERT_EQ(a.cross.size(), b.cross.size());
-  for (const auto& [pair, block] : a.cross) {
-    ASSERT_EQ(b.cross.count(pair), 1u);
-    EXPECT_TRUE(block == b.cross.at(pair))
-        << "cross " << pair.first << ", " << pair.second;
-  }
+  ExpectSameBits(a, b, "held");
   const Eigen::MatrixXd information = problem.DenseInformation();
   Eigen::MatrixXd ours;
   Eigen::MatrixXd mask;
@@ -128,15 +137,7 @@ TEST(SchurCovariance, IsTheSameForAnyThreadCount) {
       &free.problem(), free.reduced(), free.points(), free_one);
   const SchurCovariance d = ComputeSchurCovariance(
       &free.problem(), free.reduced(), free.points(), free_four);
-  ASSERT_EQ(c.reduced.size(), d.reduced.size());
-  for (size_t k = 0; k < c.reduced.size(); ++k) {
-    EXPECT_TRUE(c.reduced[k] == d.reduced[k]) << "free, reduced " << k;
-  }
-  ASSERT_EQ(c.points.size(), d.points.size());
-  for (size_t j = 0; j < c.points.size(); ++j) {
-    EXPECT_TRUE(c.points[j] == d.points[j]) << "free, point " << j;
-  }
-  EXPECT_TRUE(c.samples == d.samples);
+  ExpectSameBits(c, d, "free");
 
   four.num_threads = 0;
   ExpectErrorContaining(
