@@ -35,9 +35,10 @@
 # Environment: UWSIM (default build/bin/uwsim), UWCOLMAP (build/bin/uwcolmap),
 # ROWS_DIR (see above; CTest's is bench/results/laser_scale_matrix),
 # MC (Monte Carlo iterations, 5000), DRAWS (covariance draws, 200), MATCHER
-# (spatial: each image matched with its 50 nearest by the navigation, as a
-# user with navigation would; exhaustive takes hours on the 270-image scarp
-# survey), and what compare_with_colmap.sh reads. CTest runs it as
+# (spatial: each image matched with its 50 nearest by the navigation, each
+# laser image with its 30 (LASER_NEIGHBORS), as a user with navigation
+# would; exhaustive takes hours on the 268-image scarp survey), and what
+# compare_with_colmap.sh reads. CTest runs it as
 # bench.laser_scale_matrix (label heavy, scripts/bench.sh), which copies
 # matrix.csv and summary.txt to bench/results/laser_scale_matrix.{csv,txt}.
 set -euo pipefail

@@ -36,14 +36,36 @@ std::string RefImagesText(const std::vector<SurveyStation>& stations) {
   return text;
 }
 
-std::string ImageTimesCsv(const std::vector<SurveyStation>& stations) {
-  std::string text =
-      "# uwsim image times: seconds since the survey's start\n"
-      "image_name,time\n";
-  for (const SurveyStation& station : stations) {
-    text += fmt::format("{},{:.17g}\n", station.image_name, station.time_s);
+// image_name,time rows; `what` names the images in the comment line.
+std::string TimesCsv(
+    const std::string& what,
+    const std::vector<std::pair<std::string, double>>& name_times) {
+  std::string text = fmt::format(
+      "# uwsim {} times: seconds since the survey's start\n"
+      "image_name,time\n",
+      what);
+  for (const auto& [name, time_s] : name_times) {
+    text += fmt::format("{},{:.17g}\n", name, time_s);
   }
   return text;
+}
+
+std::string ImageTimesCsv(const std::vector<SurveyStation>& stations) {
+  std::vector<std::pair<std::string, double>> name_times;
+  for (const SurveyStation& station : stations) {
+    name_times.emplace_back(station.image_name, station.time_s);
+  }
+  return TimesCsv("image", name_times);
+}
+
+// A user knows when each laser image was taken (its file's time stamp), so
+// that the navigation can place it before it is matched (add_laser_images.sh).
+std::string LaserImageTimesCsv(const std::vector<LaserShot>& shots) {
+  std::vector<std::pair<std::string, double>> name_times;
+  for (const LaserShot& shot : shots) {
+    name_times.emplace_back(shot.name, shot.time_s);
+  }
+  return TimesCsv("laser image", name_times);
 }
 
 // Camera k's images are images[k]; cameras[k] gets camera_id k + 1.
@@ -205,6 +227,7 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
   WritePly(world.mesh, out / "truth" / "mesh.ply");
   std::vector<PendingFile> files = {
       TextFile(out / "image_times.csv", ImageTimesCsv(all_images)),
+      TextFile(out / "laser_image_times.csv", LaserImageTimesCsv(shots)),
       TextFile(out / "nav.csv",
                NavigationCsv(navigation, config.navigation.site_depth_m)),
       TextFile(out / "truth" / "nav.csv",

@@ -25,6 +25,7 @@ struct GenerateSummary {
 //   image_times.csv         when each image was taken
 //   rig.json                with a rig: its calibration (with errors)
 //   laser_images/LNNNNN.png, LNNNNN_aux.png   laser images, auxiliaries
+//   laser_image_times.csv   when each laser image was taken
 //   nav.csv                 navigation with errors
 //   lasers.json             the laser set-up as calibrated (with errors)
 //   truth/cameras.txt, images.txt, points3D.txt   true poses (COLMAP text)

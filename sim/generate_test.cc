@@ -74,5 +74,36 @@ TEST(Generate, WithoutImagesWritesTheRenderedRunsTruth) {
   fs::remove_all(dir);
 }
 
+// Each laser image has a time, as its file's time stamp would give a user,
+// so that the navigation places it before matching: the truth's, within the
+// survey's span.
+TEST(Generate, TimesEveryLaserImage) {
+  SimConfig config = SmallSimConfig();
+  config.survey_options.max_images = 6;
+  const fs::path dir = fs::temp_directory_path() /
+                       ("uw_generate_times_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  const GenerateSummary summary = Generate(config, dir, {}, false);
+  ASSERT_GT(summary.num_laser_images, 0u);
+  const nlohmann::json truth =
+      nlohmann::json::parse(FileBytes(dir / "truth" / "laser_images.json"));
+  std::istringstream times(FileBytes(dir / "laser_image_times.csv"));
+  std::string line;
+  std::getline(times, line);
+  EXPECT_EQ(line[0], '#');
+  std::getline(times, line);
+  EXPECT_EQ(line, "image_name,time");
+  size_t k = 0;
+  while (std::getline(times, line)) {
+    ASSERT_LT(k, truth["images"].size()) << line;
+    const nlohmann::json& image = truth["images"][k++];
+    const size_t comma = line.find(',');
+    EXPECT_EQ(line.substr(0, comma), image["name"].get<std::string>());
+    EXPECT_EQ(std::stod(line.substr(comma + 1)), image["time"].get<double>());
+  }
+  EXPECT_EQ(k, summary.num_laser_images);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace uw::sim
