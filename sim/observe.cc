@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <unordered_map>
+#include <unordered_set>
 
 #include <tbb/parallel_for.h>
 
@@ -130,6 +132,72 @@ void SetReprojectionErrors(Reconstruction* model) {
   }
 }
 
+// The images a mapper would register (ObserveOptions::
+// min_registration_points), with the points two or more of them still see;
+// ids, names and pixels as in `model`. Adds the dropped images to
+// `summary` and recounts its points and observations.
+Reconstruction KeepRegistrableImages(const Reconstruction& model,
+                                     int min_points, ObserveSummary* summary) {
+  std::unordered_set<image_t> dropped;
+  const auto kept_track_length = [&](const Point3D& point) {
+    return std::count_if(point.track.begin(), point.track.end(),
+                         [&](const TrackElement& element) {
+                           return dropped.count(element.image_id) == 0;
+                         });
+  };
+  // Dropping an image shortens tracks through it, which can leave another
+  // image short: repeat until none is.
+  for (bool changed = true; changed;) {
+    std::unordered_map<image_t, int> support;
+    for (const Point3D& point : model.Points3D()) {
+      if (kept_track_length(point) < 3) continue;
+      for (const TrackElement& element : point.track)
+        ++support[element.image_id];
+    }
+    changed = false;
+    for (const Image& image : model.Images()) {
+      if (dropped.count(image.image_id) == 0 &&
+          support[image.image_id] < min_points) {
+        dropped.insert(image.image_id);
+        summary->dropped_images.push_back(image.name);
+        changed = true;
+      }
+    }
+  }
+  if (dropped.empty()) return model;
+
+  Reconstruction kept;
+  kept.layout = model.layout;
+  for (const Camera& camera : model.Cameras()) kept.AddCamera(camera);
+  std::unordered_map<image_t, size_t> kept_index;
+  for (const Image& image : model.Images()) {
+    if (dropped.count(image.image_id) != 0) continue;
+    kept_index[image.image_id] = kept.Images().size();
+    Image copy = image;
+    copy.points2D.clear();
+    kept.AddImage(std::move(copy));
+  }
+  summary->num_points = 0;
+  summary->num_observations = 0;
+  for (const Point3D& point : model.Points3D()) {
+    if (kept_track_length(point) < 2) continue;
+    Point3D copy = point;
+    copy.track.clear();
+    for (const TrackElement& element : point.track) {
+      if (dropped.count(element.image_id) != 0) continue;
+      Image& image = kept.Images()[kept_index.at(element.image_id)];
+      copy.track.push_back(
+          {image.image_id, static_cast<point2D_t>(image.points2D.size())});
+      image.points2D.push_back(
+          model.FindImage(element.image_id)->points2D[element.point2D_idx]);
+    }
+    ++summary->num_points;
+    summary->num_observations += copy.track.size();
+    kept.AddPoint3D(std::move(copy));
+  }
+  return kept;
+}
+
 }  // namespace
 
 std::string ObserveInitName(ObserveInit init) {
@@ -166,6 +234,10 @@ void ObserveOptions::Check() const {
   if (!(std::isfinite(perturb_position_m) && perturb_position_m >= 0.0)) {
     throw ErrorAt("observe option perturb_position_m = ", perturb_position_m,
                   " must be finite and >= 0");
+  }
+  if (min_registration_points < 0) {
+    throw ErrorAt("observe option min_registration_points = ",
+                  min_registration_points, " must be >= 0");
   }
 }
 
@@ -235,6 +307,10 @@ Reconstruction ObserveModel(const Reconstruction& truth,
       }
       model.AddPoint3D(std::move(point));
     }
+  }
+  if (options.min_registration_points > 0) {
+    model =
+        KeepRegistrableImages(model, options.min_registration_points, &result);
   }
   if (options.init == ObserveInit::kPerturbed) {
     result.model_from_world = Perturb(options, &model);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "colmap_plugins/align/sim3.h"
 #include "colmap_plugins/scene/model.h"
@@ -39,6 +40,14 @@ struct ObserveOptions {
   // similarity only, so the start is a consistent model with pose errors.
   double perturb_rotation_deg = 0.2;
   double perturb_position_m = 0.02;
+  // As an incremental mapper registers an image only from enough points
+  // that other images already triangulated (colmap's
+  // Mapper.abs_pose_min_num_inliers, 30): when > 0, an image with fewer
+  // points seen by three or more images is dropped with its observations,
+  // until every image left has them. 0 keeps every image, including one
+  // whose points only it and one other image see: its baselines are then
+  // free, which no mapper's model holds.
+  int min_registration_points = 0;
 
   static constexpr int kMaxCandidatesPerPoint = 50;
   void Check() const;
@@ -48,6 +57,8 @@ struct ObserveSummary {
   size_t num_candidates = 0;  // points sampled on the surface the images see
   size_t num_points = 0;      // kept: seen by >= 2 images
   size_t num_observations = 0;
+  // Images dropped by min_registration_points, by name.
+  std::vector<std::string> dropped_images;
   // The similarity that took the truth to the model (identity for kTruth).
   Sim3d model_from_world;
 };

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -257,12 +258,74 @@ TEST(Observe, PerturbedModelIsTheTruthUnderTheReportedSimilarity) {
   EXPECT_LT(rms, 0.15);
 }
 
+// Five cameras 1 m above a floor, 0.6 m apart (footprints 1.6 m wide), and
+// a sixth 1.2 m past the last: only the fifth shares its view, so none of
+// its points is seen three times and no mapper would register it.
+TEST(Observe, DropsImagesAMapperWouldNotRegister) {
+  Reconstruction truth = DownLookingCameras();
+  for (Image& image : truth.Images()) {
+    image.cam_from_world.translation =
+        -(image.cam_from_world.rotation *
+          (image.ProjectionCenter() - Eigen::Vector3d(0, 0, 2.0)));
+  }
+  Image far = truth.Images().back();
+  far.image_id = 15;
+  far.name = "img5.png";
+  far.cam_from_world.translation =
+      -(far.cam_from_world.rotation * Eigen::Vector3d(2.4, 0.1, 1.0));
+  truth.AddImage(far);
+  TriangleMesh floor;
+  AddGrid({-3, -3, 0}, {6, 0, 0}, {0, 6, 0}, 12, 12, &floor);
+  ObserveOptions options;
+  options.num_points = 2000;
+  const Reconstruction all = ObserveModel(truth, floor, options);
+  ASSERT_NE(all.FindImage(15), nullptr);
+  EXPECT_GT(all.FindImage(15)->points2D.size(), 20u);
+
+  options.min_registration_points = 20;
+  ObserveSummary summary;
+  const Reconstruction kept = ObserveModel(truth, floor, options, &summary);
+  EXPECT_EQ(summary.dropped_images, std::vector<std::string>{"img5.png"});
+  EXPECT_EQ(kept.FindImage(15), nullptr);
+  EXPECT_EQ(kept.Images().size(), 5u);
+  EXPECT_EQ(summary.num_points, kept.Points3D().size());
+  EXPECT_LT(kept.Points3D().size(), all.Points3D().size());
+  size_t observations = 0;
+  std::map<image_t, int> seen_thrice;
+  for (const Point3D& point : kept.Points3D()) {
+    ASSERT_GE(point.track.size(), 2u);
+    observations += point.track.size();
+    const Point3D& original = *all.FindPoint3D(point.point3D_id);
+    EXPECT_EQ(point.xyz, original.xyz);
+    for (const TrackElement& element : point.track) {
+      if (point.track.size() >= 3) ++seen_thrice[element.image_id];
+      const Image& image = *kept.FindImage(element.image_id);
+      const Point2D& observed = image.points2D.at(element.point2D_idx);
+      EXPECT_EQ(observed.point3D_id, point.point3D_id);
+      // The same noisy pixel as without the filter.
+      bool found = false;
+      for (const Point2D& before : all.FindImage(element.image_id)->points2D) {
+        found = found || (before.point3D_id == point.point3D_id &&
+                          before.xy == observed.xy);
+      }
+      EXPECT_TRUE(found) << point.point3D_id;
+    }
+  }
+  EXPECT_EQ(summary.num_observations, observations);
+  for (const Image& image : kept.Images()) {
+    EXPECT_GE(seen_thrice[image.image_id], 20) << image.name;
+  }
+}
+
 TEST(Observe, RejectsBadOptions) {
   ObserveOptions options;
   options.pixel_sigma = -1.0;
   EXPECT_THROW(options.Check(), Error);
   options = ObserveOptions();
   options.num_points = 0;
+  EXPECT_THROW(options.Check(), Error);
+  options = ObserveOptions();
+  options.min_registration_points = -1;
   EXPECT_THROW(options.Check(), Error);
   EXPECT_THROW(ObserveInitFromName("navigation"), Error);
   EXPECT_EQ(ObserveInitFromName("perturbed"), ObserveInit::kPerturbed);

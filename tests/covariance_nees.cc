@@ -8,6 +8,7 @@
 #include <iostream>
 #include <iterator>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -33,15 +34,24 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// nav.csv with the true vehicle positions (truth/nav.csv) plus Gaussian
+// The model a mapper would give: an image is kept only with 30 points that
+// three or more images see (colmap's Mapper.abs_pose_min_num_inliers). The
+// scarp's line ends see too little of the wall for that at 120 points per
+// image; kept, their baselines would be free, which no mapper's model holds.
+constexpr int kMinRegistrationPoints = 30;
+
+// nav.csv of `model`'s images (a log names only images the adjusted model
+// has) with the true vehicle positions (truth/nav.csv) plus Gaussian
 // noise of `noise_factor` times the sigmas it states: the survey's
 // (nav.csv's std_x, std_y, std_z), or `horizontal_sigma_m` (> 0)
 // horizontally. With `attitude`, the true roll, pitch and yaw plus noise of
 // their stated sigmas too (from a stream of its own: the positions' draws
 // stay as they were); the other columns as the survey's.
-void WriteNoisyNavigation(const fs::path& sim_dir, const fs::path& path,
-                          unsigned seed, bool attitude,
+void WriteNoisyNavigation(const fs::path& sim_dir, const Reconstruction& model,
+                          const fs::path& path, unsigned seed, bool attitude,
                           double horizontal_sigma_m, double noise_factor) {
+  std::set<std::string> names;
+  for (const Image& image : model.Images()) names.insert(image.name);
   const std::vector<std::string> columns = {
       "image_name", "time",  "dive",     "x",         "y",
       "z",          "roll",  "pitch",    "yaw",       "std_x",
@@ -66,24 +76,30 @@ void WriteNoisyNavigation(const fs::path& sim_dir, const fs::path& path,
   out.precision(17);
   for (size_t row = 0; row < stated.NumRows(); ++row) {
     ASSERT_EQ(stated.Text(row, "image_name"), truth.Text(row, "image_name"));
+    // Every row draws its noise, written or not: dropping an image leaves
+    // the others' draws as they were.
+    std::ostringstream line;
+    line.precision(17);
     for (size_t c = 0; c < stated.Header().size(); ++c) {
       const std::string& column = stated.Header()[c];
-      out << (c ? "," : "");
+      line << (c ? "," : "");
       if (column == "x" || column == "y" || column == "z") {
-        out << truth.Double(row, column) +
-                   noise_factor * sigma(row, column) * normal(rng);
+        line << truth.Double(row, column) +
+                    noise_factor * sigma(row, column) * normal(rng);
       } else if (horizontal_sigma_m > 0.0 &&
                  (column == "std_x" || column == "std_y")) {
-        out << horizontal_sigma_m;
+        line << horizontal_sigma_m;
       } else if (attitude &&
                  (column == "roll" || column == "pitch" || column == "yaw")) {
-        out << truth.Double(row, column) +
-                   stated.Double(row, "std_" + column) * normal(attitude_rng);
+        line << truth.Double(row, column) +
+                    stated.Double(row, "std_" + column) * normal(attitude_rng);
       } else {
-        out << CsvField(stated.Text(row, column));
+        line << CsvField(stated.Text(row, column));
       }
     }
-    out << "\n";
+    if (names.count(stated.Text(row, "image_name")) != 0) {
+      out << line.str() << "\n";
+    }
   }
 }
 
@@ -234,6 +250,7 @@ Nees MeanNees(const fs::path& sim_dir, const NeesOptions& options) {
     observe.pixel_sigma = 0.5;
     observe.num_points = options.points_observed;
     observe.seed = 1000 + trial;
+    observe.min_registration_points = kMinRegistrationPoints;
     // Started at the truth: its points are where the truth has them.
     const Reconstruction observed = sim::ObserveModel(truth, mesh, observe);
     WriteModel(observed, trial_dir / "observed", ModelFormat::kBinary);
@@ -241,8 +258,9 @@ Nees MeanNees(const fs::path& sim_dir, const NeesOptions& options) {
                                  ? " --Covariance.gauge held"
                                  : " --Covariance.gauge free_network";
     if (fused) {
-      WriteNoisyNavigation(sim_dir, trial_dir / "nav.csv", 2000 + trial,
-                           options.attitude, options.horizontal_sigma_m,
+      WriteNoisyNavigation(sim_dir, observed, trial_dir / "nav.csv",
+                           2000 + trial, options.attitude,
+                           options.horizontal_sigma_m,
                            options.navigation_noise_factor);
       navigation = " --nav " + Quoted(trial_dir / "nav.csv") +
                    SurveyMountFlags(sim_dir) +

@@ -173,5 +173,54 @@ TEST(SinglePassScarp, TheAdjusterNamesImagesWithoutScaleTransfer) {
   EXPECT_NE(adjusted.output.find("00132.png"), std::string::npos);
 }
 
+// The same plan as a mapper would leave it (uwsim observe drops the line
+// ends, --min_registration_points 30) and without navigation: colmap's
+// monotonic Levenberg-Marquardt crawls along the two lines' weak bending
+// and stops at its limit; the non-monotonic steps the adjuster takes by
+// default reach a lower cost, converged, in far fewer (docs/uwcolmap.md).
+TEST(SinglePassScarp, NonMonotonicStepsConvergeWhereColmapsCrawl) {
+  const fs::path plan = fs::path(UW_PLANS_DIR) / "scarp";
+  const fs::path dir = FreshTestDir("uw_single_pass_scarp_steps");
+  const auto observed = RunProcess(
+      Quoted(fs::path(UW_BIN_DIR) / "uwsim") + " observe --sim " +
+          Quoted(plan) + " --output_path " + Quoted(dir / "tracks") +
+          " --num_points 32160 --seed 1000 --min_registration_points 30",
+      true);
+  ASSERT_EQ(observed.exit_code, 0) << observed.output;
+  EXPECT_NE(observed.output.find("images dropped"), std::string::npos)
+      << observed.output;
+  EXPECT_NE(observed.output.find("00133.png"), std::string::npos);
+  const auto adjust = [&](const std::string& name, const std::string& flags) {
+    const auto adjusted = RunProcess(
+        Quoted(fs::path(UW_BIN_DIR) / "uwcolmap") +
+            " bundle_adjuster --input_path " + Quoted(dir / "tracks") +
+            " --output_path " + Quoted(dir / name) + flags,
+        true);
+    EXPECT_EQ(adjusted.exit_code, 0) << adjusted.output;
+    EXPECT_EQ(adjusted.output.find("images share no point that 3 images see"),
+              std::string::npos)
+        << adjusted.output;
+    return ReadJson(dir / name / "ba_report.json");
+  };
+  const nlohmann::json ours = adjust("ours", "");
+  const nlohmann::json colmaps =
+      adjust("colmaps",
+             " --BundleAdjustment.use_nonmonotonic_steps 0"
+             " --BundleAdjustment.function_tolerance 0"
+             " --BundleAdjustment.max_num_iterations 40");
+  EXPECT_EQ(ours.at("termination"), "CONVERGENCE");
+  EXPECT_LE(ours.at("iterations").get<int>(), 40);
+  EXPECT_TRUE(ours.at("warnings").empty()) << ours.at("warnings");
+  EXPECT_EQ(colmaps.at("termination"), "NO_CONVERGENCE");
+  EXPECT_EQ(colmaps.at("warnings").size(), 1u);
+  const auto cost = [](const nlohmann::json& report) {
+    return report.at("final_cost")
+        .at("reprojection")
+        .at("weighted_cost")
+        .get<double>();
+  };
+  EXPECT_LT(cost(ours), cost(colmaps));
+}
+
 }  // namespace
 }  // namespace uw

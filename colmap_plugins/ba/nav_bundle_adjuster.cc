@@ -957,6 +957,7 @@ NavBundleAdjustmentReport Adjustment::Run() {
   solver_options.max_num_consecutive_invalid_steps = 10;
   solver_options.max_consecutive_nonmonotonic_steps = 10;
   solver_options.num_threads = NumThreads();
+  solver_options.use_nonmonotonic_steps = options_.use_nonmonotonic_steps;
   // Under the likelihood weighting the priors hold the model's placement
   // (a similarity: scale above all) only weakly against the images, and
   // Levenberg-Marquardt, stepping along tangents, crawls along that curved

@@ -37,7 +37,14 @@ void AddNavBundleAdjustmentFlags(CommandLine* cli, std::string* input_path,
            &adjuster->max_linear_solver_iterations,
            "Linear solver iterations at most");
   cli->Add("--BundleAdjustment.function_tolerance",
-           &adjuster->function_tolerance, "Ceres' function tolerance");
+           &adjuster->function_tolerance,
+           "Ceres' function tolerance (colmap: 0, which never stops a "
+           "non-monotonic solve)");
+  cli->Add("--BundleAdjustment.use_nonmonotonic_steps",
+           &adjuster->use_nonmonotonic_steps,
+           "Ceres' non-monotonic trust region: the cost may rise for a few "
+           "steps (colmap: 0, monotonic, which crawls along a long strip's "
+           "weak bending)");
   cli->Add("--BundleAdjustment.gradient_tolerance",
            &adjuster->gradient_tolerance, "Ceres' gradient tolerance");
   cli->Add("--BundleAdjustment.parameter_tolerance",

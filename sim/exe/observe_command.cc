@@ -28,6 +28,10 @@ void AddObserveFlags(CommandLine* cli, ObserveCommandOptions* options) {
            "perturbed: rotation noise per camera and axis");
   cli->Add("--perturb_position_m", &observe.perturb_position_m,
            "perturbed: camera centre noise per axis, world metres");
+  cli->Add("--min_registration_points", &observe.min_registration_points,
+           "Drop, as a mapper would not register it, every image with fewer "
+           "points seen by 3 or more images (colmap's "
+           "Mapper.abs_pose_min_num_inliers is 30); 0 keeps every image");
 }
 
 void RunObserve(const ObserveCommandOptions& options) {
@@ -39,6 +43,16 @@ void RunObserve(const ObserveCommandOptions& options) {
             << ObserveInitName(options.observe.init) << " (model_from_world "
             << ToJson(summary.model_from_world).dump() << ") written to "
             << options.output_path << std::endl;
+  if (!summary.dropped_images.empty()) {
+    std::cout << "[uwsim] observe: " << summary.dropped_images.size()
+              << " images dropped, fewer than "
+              << options.observe.min_registration_points
+              << " points seen by 3 or more images:";
+    for (const std::string& name : summary.dropped_images) {
+      std::cout << " " << name;
+    }
+    std::cout << std::endl;
+  }
 }
 
 }  // namespace
@@ -52,7 +66,7 @@ Subcommand ObserveCommand() {
       "every image that sees them, with Gaussian pixel noise; a COLMAP text "
       "model with truth/'s camera and image ids (docs/uwsim.md).\n\n"
       "Example:\n  uwsim observe --sim sim --output_path tracks "
-      "--pixel_sigma 0.5 --init perturbed",
+      "--pixel_sigma 0.5 --init perturbed --min_registration_points 30",
       AddObserveFlags, RunObserve);
 }
 
