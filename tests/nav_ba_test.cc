@@ -248,9 +248,14 @@ TEST(NavBundleAdjusterUwsim, BadInputIsRejectedAndNothingIsWritten) {
   // Lines 1-2: a comment and the header; data rows from line 3 on.
   std::vector<std::string> nan_rows = lines;
   nan_rows[2] = with_field(nan_rows[2], 3, "nan");  // x of line 3
-  std::vector<std::string> stray_rows = lines;
-  stray_rows.push_back(
-      with_field(with_field(lines.back(), 0, "cam1/09999.png"), 1, "1000"));
+  // A row of an image the model lacks is left out (a mapper rarely
+  // registers every image), but a log naming none of its images is another
+  // survey's.
+  std::vector<std::string> other_rows = lines;
+  for (size_t i = 2; i < other_rows.size(); ++i) {
+    other_rows[i] =
+        with_field(other_rows[i], 0, "other/" + std::to_string(i) + ".png");
+  }
   std::vector<std::string> backwards_rows = lines;
   std::swap(backwards_rows[3], backwards_rows[4]);  // lines 4 and 5
   const std::vector<std::string> two_rows(lines.begin(), lines.begin() + 4);
@@ -266,9 +271,9 @@ TEST(NavBundleAdjusterUwsim, BadInputIsRejectedAndNothingIsWritten) {
   const std::string times =
       " --image_times " + Quoted(dir / "sim/image_times.csv");
   const std::vector<Case> cases = {
-      {"nav row naming no image",
-       "--nav " + Quoted(write("stray.csv", join(stray_rows))),
-       "is not in the model"},
+      {"nav naming no image of the model",
+       "--nav " + Quoted(write("other.csv", join(other_rows))),
+       "other.csv: none of its"},
       {"NaN", "--nav " + Quoted(write("nan.csv", join(nan_rows))), "nan.csv:3"},
       {"time going backwards",
        "--nav " + Quoted(write("back.csv", join(backwards_rows))),

@@ -299,11 +299,33 @@ TEST(NavBundleAdjustmentController, LoadsThePriorsOfTheNavigation) {
   EXPECT_EQ(result.num_priors, 16u);
   EXPECT_LT(test::CameraCenterRmse(model, scene.truth), 0.25);
 
+  // A mapper rarely registers every image: a row of another image is left
+  // out and counted.
   options.priors.nav.nav_path =
       WriteNav(scene, dir, "stray.png,99,1,0,0,3,0,0,0,0.3,0.3,0.3,1,1,1\n");
+  Reconstruction with_stray = ModelInItsOwnFrame(scene);
+  lines.clear();
+  EXPECT_EQ(
+      AdjustModelWithNavigation(options, &with_stray, Into(&lines)).num_priors,
+      16u);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[1],
+            "Priors: 16 images (1 priors of images not in the model)");
+
+  // A log none of whose rows names an image of the model is another
+  // survey's.
+  {
+    std::ofstream out(dir / "other.csv");
+    out << "image_name,time,dive,x,y,z,roll,pitch,yaw,std_x,std_y,std_z,"
+           "std_roll,std_pitch,std_yaw\n"
+           "other1.png,1,1,0,0,3,0,0,0,0.3,0.3,0.3,1,1,1\n"
+           "other2.png,2,1,1,0,3,0,0,0,0.3,0.3,0.3,1,1,1\n";
+  }
+  options.priors.nav.nav_path = dir / "other.csv";
   Reconstruction untouched = ModelInItsOwnFrame(scene);
   ExpectErrorContaining([&] { AdjustModelWithNavigation(options, &untouched); },
-                        "image 'stray.png' is not in the model scene");
+                        "none of its 2 priors is of an image of the model "
+                        "scene (16 images)");
 }
 
 TEST(NavBundleAdjustmentController, LCurveSweepsACopyOfTheModel) {

@@ -62,14 +62,30 @@ NavInputs LoadNavInputs(const NavInputOptions& options,
         images.emplace_back(image.name, image.camera_id);
       }
     }
-    const LoadedCameraPriors loaded = LoadCameraPriors(
-        options.nav, images,
-        options.database_path.empty() ? "the model " + model_name
-                                      : options.database_path);
-    return NavInputsForModel(
+    // A mapper rarely registers every image (colmap's model of the scarp
+    // survey lacked 13 of 268), so against the model the rows of the
+    // others are left out and counted; a database lists every image, and
+    // a row naming none of them is an error there.
+    const bool against_model = options.database_path.empty();
+    const std::string source =
+        against_model ? "the model " + model_name : options.database_path;
+    const LoadedCameraPriors loaded =
+        LoadCameraPriors(options.nav, images, source,
+                         against_model ? ImagesNamedByNavigation::kAny
+                                       : ImagesNamedByNavigation::kOnlyGiven);
+    NavInputs inputs = NavInputsForModel(
         loaded.priors, loaded.rig.cameras.empty() ? nullptr : &loaded.rig,
         model, options.position_sigma_m, options.override_sigma,
         options.rig_rotation_sigma_deg, options.rig_translation_sigma_m);
+    if (inputs.priors.empty()) {
+      throw ErrorAt(options.nav.nav_path.string(), ": none of its ",
+                    loaded.priors.size(),
+                    " priors is of an image of the model ", model_name, " (",
+                    model.Images().size(),
+                    " images): a log of another survey, or image names "
+                    "spelt otherwise?");
+    }
+    return inputs;
   }
   if (!options.database_path.empty()) {
     const Database database =
