@@ -64,8 +64,7 @@ struct NeesOptions {
   NeesGauge gauge = NeesGauge::kPriors;
   int points_observed = 4000;
   // Trials, unless UW_NEES_TRIALS says otherwise. 400 decide the 10 % on
-  // the skewed means (above); 100 where a trial takes a minute (the
-  // scarp's 268 images).
+  // the skewed means (above).
   int num_trials = 400;
   // kPriors only: the log's roll, pitch and yaw as priors too, with fresh
   // noise of their stated sigmas.
