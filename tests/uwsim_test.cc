@@ -48,9 +48,11 @@ TEST(Uwsim, SameSeedGivesTheSameBytesWhateverTheThreadCount) {
   const auto two = Files(dir / "two");
   const auto other = Files(dir / "other");
   // 3 images, a laser image and its auxiliary, nav.csv, image_times.csv,
-  // lasers.json and truth/: cameras, images, points3D, ref_images, nav.csv,
-  // mesh.ply, sim.json, lasers.json, laser_images.json.
-  ASSERT_EQ(one.size(), 17u);
+  // laser_image_times.csv, lasers.json and truth/: cameras, images,
+  // points3D, ref_images, nav.csv, mesh.ply, sim.json, lasers.json,
+  // laser_images.json.
+  ASSERT_EQ(one.size(), 18u);
+  EXPECT_TRUE(one.count("laser_image_times.csv"));
   EXPECT_TRUE(one.count("laser_images/L00002_aux.png"));
   for (const auto& [name, bytes] : one) {
     ASSERT_TRUE(two.count(name)) << name;
