@@ -39,6 +39,17 @@ nlohmann::json ReadJson(const fs::path& path) {
   return nlohmann::json::parse(ReadFileToString(path));
 }
 
+// uwsim observe of `plan` into `tracks` with `flags`; its output.
+std::string ObserveTracks(const fs::path& plan, const fs::path& tracks,
+                          const std::string& flags) {
+  const auto observed = RunProcess(
+      Quoted(fs::path(UW_BIN_DIR) / "uwsim") + " observe --sim " +
+          Quoted(plan) + " --output_path " + Quoted(tracks) + " " + flags,
+      true);
+  EXPECT_EQ(observed.exit_code, 0) << observed.output;
+  return observed.output;
+}
+
 class SinglePass : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -47,12 +58,8 @@ class SinglePass : public ::testing::Test {
         std::string(
             ::testing::UnitTest::GetInstance()->current_test_info()->name()));
     // Tracks in a frame of their own (scale 0.3-3), as a mapper leaves them.
-    const auto observed = RunProcess(
-        Quoted(fs::path(UW_BIN_DIR) / "uwsim") + " observe --sim " +
-            Quoted(kPlanDir) + " --output_path " + Quoted(dir_ / "tracks") +
-            " --num_points 2500 --init perturbed --seed 3",
-        true);
-    ASSERT_EQ(observed.exit_code, 0) << observed.output;
+    ObserveTracks(kPlanDir, dir_ / "tracks",
+                  "--num_points 2500 --init perturbed --seed 3");
   }
 
   std::string Uwcolmap(const std::string& command,
@@ -152,12 +159,7 @@ TEST_F(SinglePass, CompareWithColmapRepeatsTheWarningsAndTakesTheAttitude) {
 TEST(SinglePassScarp, TheAdjusterNamesImagesWithoutScaleTransfer) {
   const fs::path plan = fs::path(UW_PLANS_DIR) / "scarp";
   const fs::path dir = FreshTestDir("uw_single_pass_scarp");
-  const auto observed =
-      RunProcess(Quoted(fs::path(UW_BIN_DIR) / "uwsim") + " observe --sim " +
-                     Quoted(plan) + " --output_path " + Quoted(dir / "tracks") +
-                     " --num_points 32160 --seed 1001",
-                 true);
-  ASSERT_EQ(observed.exit_code, 0) << observed.output;
+  ObserveTracks(plan, dir / "tracks", "--num_points 32160 --seed 1001");
   // The warning needs no converged adjustment: 10 iterations.
   const auto adjusted = RunProcess(
       Quoted(fs::path(UW_BIN_DIR) / "uwcolmap") +
@@ -181,15 +183,11 @@ TEST(SinglePassScarp, TheAdjusterNamesImagesWithoutScaleTransfer) {
 TEST(SinglePassScarp, NonMonotonicStepsConvergeWhereColmapsCrawl) {
   const fs::path plan = fs::path(UW_PLANS_DIR) / "scarp";
   const fs::path dir = FreshTestDir("uw_single_pass_scarp_steps");
-  const auto observed = RunProcess(
-      Quoted(fs::path(UW_BIN_DIR) / "uwsim") + " observe --sim " +
-          Quoted(plan) + " --output_path " + Quoted(dir / "tracks") +
-          " --num_points 32160 --seed 1000 --min_registration_points 30",
-      true);
-  ASSERT_EQ(observed.exit_code, 0) << observed.output;
-  EXPECT_NE(observed.output.find("images dropped"), std::string::npos)
-      << observed.output;
-  EXPECT_NE(observed.output.find("00133.png"), std::string::npos);
+  const std::string observed = ObserveTracks(
+      plan, dir / "tracks",
+      "--num_points 32160 --seed 1000 --min_registration_points 30");
+  EXPECT_NE(observed.find("images dropped"), std::string::npos) << observed;
+  EXPECT_NE(observed.find("00133.png"), std::string::npos);
   const auto adjust = [&](const std::string& name, const std::string& flags) {
     const auto adjusted = RunProcess(
         Quoted(fs::path(UW_BIN_DIR) / "uwcolmap") +
