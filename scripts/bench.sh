@@ -11,4 +11,6 @@ build_dir="${UW_BUILD_DIR:-$root/build}"
 
 bash "$root/scripts/setup.sh"
 cd "$build_dir"
-ctest --output-on-failure --label-regex heavy --timeout 7200 "$@"
+# Six hours a test: each of the scarp's NEES tests (400 re-adjustments of
+# 256 images) takes about two on 2 cores, more beside another heavy test.
+ctest --output-on-failure --label-regex heavy --timeout 21600 "$@"

@@ -242,8 +242,11 @@ Nees MeanNees(const fs::path& sim_dir, const NeesOptions& options) {
   const char* trials_override = std::getenv("UW_NEES_TRIALS");
   const int num_trials = trials_override != nullptr ? std::stoi(trials_override)
                                                     : options.num_trials;
+  const char* first_override = std::getenv("UW_NEES_FIRST_TRIAL");
+  const int first_trial =
+      first_override != nullptr ? std::stoi(first_override) : 0;
   std::vector<NeesTrial> trials;
-  for (int trial = 0; trial < num_trials; ++trial) {
+  for (int trial = first_trial; trial < first_trial + num_trials; ++trial) {
     const fs::path trial_dir = dir / std::to_string(trial);
     fs::create_directories(trial_dir / "observed");
     sim::ObserveOptions observe;
@@ -337,8 +340,9 @@ Nees MeanNees(const fs::path& sim_dir, const NeesOptions& options) {
     trials.push_back({trial_pose, trial_poses, trial_point,
                       covariance.points.size(), warned});
     std::cout << "[ trial " << trial << " ] mean NEES poses "
-              << trial_pose / trial_poses << ", points "
-              << trial_point / covariance.points.size()
+              << trial_pose / trial_poses << " (" << trial_poses
+              << " poses), points " << trial_point / covariance.points.size()
+              << " (" << covariance.points.size() << " points)"
               << (warned ? " (warned)" : "")
               << std::endl;  // flushed: a stopped run still shows its trials
     fs::remove_all(trial_dir);

@@ -64,7 +64,10 @@ struct NeesOptions {
   NeesGauge gauge = NeesGauge::kPriors;
   int points_observed = 4000;
   // Trials, unless UW_NEES_TRIALS says otherwise. 400 decide the 10 % on
-  // the skewed means (above).
+  // the skewed means (above). Trial k draws its tracks and noise from seeds
+  // 1000 + k and 2000 + k; UW_NEES_FIRST_TRIAL (default 0) starts k there,
+  // so that a run of hours can be split over sessions or machines and its
+  // parts' "[ trial k ]" lines pooled by scripts/nees_summary.py.
   int num_trials = 400;
   // kPriors only: the log's roll, pitch and yaw as priors too, with fresh
   // noise of their stated sigmas.

@@ -182,6 +182,64 @@ TEST(BundleCovariance, NavWeightTakesThePriorsAsTheAdjustmentWeightedThem) {
                Error);
 }
 
+// A soft rig's terms enter the adjustment in pixels by the same lambda
+// sigma_n as the priors (nav_bundle_adjuster.h), so a navigation weighted 3x
+// its sigmas weighs the rig 3x too: the covariance must take the rig's
+// sigmas with the priors' factor, exactly as if both were stated so.
+TEST(BundleCovariance, SoftRigSigmasScaleAsTheAdjustmentWeightedThem) {
+  test::TestSceneOptions scene_options;
+  scene_options.rig = true;
+  const test::TestScene scene = test::MakeTestScene(scene_options);
+  Reconstruction model = scene.observed;
+  NavBundleAdjustmentOptions adjuster = test::FixedIntrinsics();
+  adjuster.weight_px_per_m = 3.0 * 0.5 / 0.3;
+  AdjustWithNavigation(adjuster, scene.priors, &scene.rig, scene.image_times,
+                       &model);
+  BundleCovarianceOptions weighted;
+  weighted.nav_weight_px_per_m = adjuster.weight_px_per_m;
+  const BundleCovariance a = EstimateBundleCovariance(
+      adjuster, scene.priors, &scene.rig, scene.image_times, model, weighted);
+  const double factor = a.nav_sigma_scale;
+  ASSERT_LT(factor, 0.5);
+
+  std::vector<ImagePosePrior> scaled = scene.priors;
+  for (ImagePosePrior& prior : scaled) {
+    prior.position_covariance *= factor * factor;
+    prior.rotation_covariance *= factor * factor;
+  }
+  SoftRig scaled_rig = scene.rig;
+  for (SoftRigCamera& camera : scaled_rig.cameras) {
+    camera.rotation_sigma_rad *= factor;
+    camera.translation_sigma_m *= factor;
+  }
+  BundleCovarianceOptions as_stated;
+  as_stated.pixel_sigma_px = a.pixel_sigma_px;
+  const BundleCovariance b = EstimateBundleCovariance(
+      adjuster, scaled, &scaled_rig, scene.image_times, model, as_stated);
+  // The rig left as stated: its images' relative poses held 1/factor less
+  // tightly than the adjustment held them.
+  const BundleCovariance rig_as_stated = EstimateBundleCovariance(
+      adjuster, scaled, &scene.rig, scene.image_times, model, as_stated);
+  ASSERT_EQ(a.images.size(), b.images.size());
+  ASSERT_EQ(a.images.size(), model.Images().size());
+  double worst = 0.0;
+  double worst_rig_as_stated = 0.0;
+  for (size_t i = 0; i < a.images.size(); ++i) {
+    const double norm = b.images[i].rotation_center.norm();
+    worst = std::max(
+        worst,
+        (a.images[i].rotation_center - b.images[i].rotation_center).norm() /
+            norm);
+    worst_rig_as_stated = std::max(
+        worst_rig_as_stated,
+        (rig_as_stated.images[i].rotation_center - b.images[i].rotation_center)
+                .norm() /
+            norm);
+  }
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_GT(worst_rig_as_stated, 1e-3);
+}
+
 TEST(BundleCovariance, NearlyDegenerateSelfCalibrationIsFlagged) {
   const test::TestScene scene = test::MakeTestScene({});
   Reconstruction model = scene.observed;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <random>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -49,6 +50,16 @@ struct TestSceneOptions {
   // >= num_lines), whose navigation is off by dive2_bias.
   int first_line_of_dive_2 = 1000;
   Eigen::Vector3d dive2_bias = Eigen::Vector3d::Zero();
+  // A second camera (id 2, the first's intrinsics) rigidly mounted beside
+  // the first: every station also takes an image of it, at the same time,
+  // with no navigation prior of its own (the log has the vehicle, here
+  // camera 1). TestScene::rig states the mount with the sigmas below.
+  bool rig = false;
+  Rigid3d rig_cam2_from_cam1 = {
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitY())),
+      Eigen::Vector3d(-0.3, 0.0, 0.0)};
+  double rig_rotation_sigma_rad = 0.002;
+  double rig_translation_sigma_m = 0.005;
   unsigned seed = 1;
 };
 
@@ -56,6 +67,10 @@ struct TestScene {
   Reconstruction truth;
   Reconstruction observed;  // truth poses/points, noisy observations
   std::vector<ImagePosePrior> priors;
+  // With TestSceneOptions::rig: the mount, and every image's time (its
+  // station's index, s), which pairs the rig's images.
+  SoftRig rig;
+  std::unordered_map<image_t, double> image_times;
 };
 
 // Exp of a rotation vector (rad); the identity for a zero vector.
@@ -87,6 +102,15 @@ inline TestScene MakeTestScene(const TestSceneOptions& options) {
   camera.height = 768;
   camera.params = {800.0, 512.0, 384.0, -0.04};
   scene.truth.AddCamera(camera);
+  if (options.rig) {
+    Camera second = camera;
+    second.camera_id = 2;
+    scene.truth.AddCamera(second);
+    scene.rig.reference_camera_id = 1;
+    scene.rig.cameras.push_back({2, options.rig_cam2_from_cam1,
+                                 options.rig_rotation_sigma_rad,
+                                 options.rig_translation_sigma_m});
+  }
 
   image_t image_id = 1;
   std::vector<int> line_of_image;  // by image_id - 1
@@ -123,6 +147,22 @@ inline TestScene MakeTestScene(const TestSceneOptions& options) {
         image.cam_from_world =
             LookDownFrom(center, 0.05 * normal(rng) + (line % 2) * M_PI);
         scene.truth.AddImage(image);
+        if (!options.rig) continue;
+        const double time = static_cast<double>(image.image_id);
+        scene.image_times[image.image_id] = time;
+        const Rigid3d& cam2_from_cam1 = options.rig_cam2_from_cam1;
+        Image rig_image = image;
+        rig_image.image_id = image_id++;
+        rig_image.camera_id = 2;
+        rig_image.name = "rig" + std::to_string(rig_image.image_id) + ".png";
+        rig_image.cam_from_world.rotation =
+            cam2_from_cam1.rotation * image.cam_from_world.rotation;
+        rig_image.cam_from_world.translation =
+            cam2_from_cam1.rotation * image.cam_from_world.translation +
+            cam2_from_cam1.translation;
+        scene.truth.AddImage(rig_image);
+        scene.image_times[rig_image.image_id] = time;
+        line_of_image.push_back(line);
       }
     }
   }
@@ -174,6 +214,7 @@ inline TestScene MakeTestScene(const TestSceneOptions& options) {
     }
   }
   for (const Image& image : scene.truth.Images()) {
+    if (image.camera_id != 1) continue;
     const int line = line_of_image[image.image_id - 1];
     ImagePosePrior prior;
     prior.image_id = image.image_id;
