@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "common/util/error.h"
+#include "common/util/time_text.h"
 
 namespace uw {
 namespace {
@@ -171,9 +172,9 @@ void TimedPath::Check() const {
     }
     const bool same_dive = dives.empty() || (i > 0 && dives[i] == dives[i - 1]);
     if (i > 0 && same_dive && !(times_s[i] > times_s[i - 1])) {
-      throw ErrorAt("path: sample ", i, " at ", times_s[i],
-                    " s does not come after the previous one (", times_s[i - 1],
-                    " s) of its dive");
+      throw ErrorAt("path: sample ", i, " at ", TimeText(times_s[i]),
+                    " s does not come after the previous one (",
+                    TimeText(times_s[i - 1]), " s) of its dive");
     }
   }
 }

@@ -7,6 +7,7 @@
 
 #include "colmap_plugins/nav/attitude.h"
 #include "common/util/error.h"
+#include "common/util/time_text.h"
 
 namespace uw {
 namespace {
@@ -77,7 +78,8 @@ void NavToCameraOptions::Check() const {
                   ") deg must be finite");
   }
   if (!std::isfinite(time_offset_s)) {
-    throw ErrorAt("time offset ", time_offset_s, " s must be finite");
+    throw ErrorAt("time offset ", SecondsText(time_offset_s),
+                  " s must be finite");
   }
 }
 
@@ -97,9 +99,10 @@ std::string DescribeNavToCamera(const NavToCameraOptions& options) {
   const Eigen::Vector3d& boresight = options.boresight_deg;
   return fmt::format(
       "mount {}, lever arm {:g},{:g},{:g} m, boresight {:g},{:g},{:g} deg, "
-      "time offset {:g} s",
+      "time offset {} s",
       CameraMountName(options.mount), lever.x(), lever.y(), lever.z(),
-      boresight.x(), boresight.y(), boresight.z(), options.time_offset_s);
+      boresight.x(), boresight.y(), boresight.z(),
+      SecondsText(options.time_offset_s));
 }
 
 }  // namespace uw

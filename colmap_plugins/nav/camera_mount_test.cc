@@ -118,6 +118,10 @@ TEST(CameraMount, DescriptionNamesEveryPartInOneLine) {
   EXPECT_EQ(DescribeNavToCamera(options),
             "mount starboard, lever arm 0.6,0,-0.3 m, boresight 0.3,-0.5,0.8 "
             "deg, time offset 0.25 s");
+  // A camera clock 58 days and a quarter second off: every digit.
+  options.time_offset_s = 5011200.25;
+  EXPECT_NE(DescribeNavToCamera(options).find("time offset 5011200.25 s"),
+            std::string::npos);
 }
 
 }  // namespace

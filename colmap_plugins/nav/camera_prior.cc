@@ -8,6 +8,7 @@
 
 #include "colmap_plugins/nav/attitude.h"
 #include "common/util/error.h"
+#include "common/util/time_text.h"
 
 namespace uw {
 namespace {
@@ -88,8 +89,9 @@ struct Dive {
            time <= End() + LastInterval() * (1.0 + kRelativeTimeSlack);
   }
   std::string Span(const std::string& nav_name) const {
-    return fmt::format("{:.10g} to {:.10g} s, {} lines {} to {}", Start(),
-                       End(), nav_name, rows.front()->line, rows.back()->line);
+    return fmt::format("{} to {} s, {} lines {} to {}", TimeText(Start()),
+                       TimeText(End()), nav_name, rows.front()->line,
+                       rows.back()->line);
   }
 };
 
@@ -111,7 +113,7 @@ class Navigation {
       for (size_t i = 1; i < dive.rows.size(); ++i) {
         if (!(dive.rows[i]->time_s > dive.rows[i - 1]->time_s)) {
           throw ErrorAt(nav_name_, ":", dive.rows[i]->line, ": time ",
-                        dive.rows[i]->time_s,
+                        TimeText(dive.rows[i]->time_s),
                         " s is not after the previous row of dive ", number,
                         " (line ", dive.rows[i - 1]->line, ")");
         }
@@ -138,14 +140,15 @@ class Navigation {
     }
     if (covering.empty()) {
       throw ErrorAt(image.where, ": image '", image.name,
-                    "' at navigation time ", image.time_s,
+                    "' at navigation time ", TimeText(image.time_s),
                     " s lies outside the navigation of every dive, even "
                     "allowing one sampling interval beyond each end",
                     spans);
     }
     throw ErrorAt(image.where, ": image '", image.name, "' at navigation time ",
-                  image.time_s, " s lies in the navigation of several dives",
-                  spans, "; give image_times.csv a dive column");
+                  TimeText(image.time_s),
+                  " s lies in the navigation of several dives", spans,
+                  "; give image_times.csv a dive column");
   }
 
   // The vehicle when `image` was taken in dive `number` (from DiveOf).
@@ -161,7 +164,7 @@ class Navigation {
     }
     if (rows.size() == 1 || !dive.Covers(time)) {
       throw ErrorAt(image.where, ": image '", image.name,
-                    "' at navigation time ", image.time_s,
+                    "' at navigation time ", TimeText(image.time_s),
                     " s lies outside the navigation of dive ", number, " (",
                     dive.Span(nav_name_),
                     rows.size() == 1

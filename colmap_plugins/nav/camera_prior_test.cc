@@ -167,6 +167,24 @@ TEST(CameraPrior, ImageTimesAreInterpolatedAndExtrapolatedOneIntervalAtMost) {
       "extrapolation reaches one sampling interval beyond each end at most");
 }
 
+// A log on Unix time, and an image 58 days off it (a camera clock never
+// set): the message gives both times in full and as dates, so the offset
+// shows; 1.72841e+09 would hide it and the fraction.
+TEST(CameraPrior, UnixTimesAreNamedInFullAndAsDates) {
+  const Motion motion;
+  const double start = 1728410000.25;
+  const std::vector<NavRecord> nav = {motion.Row("", start, 1, 2),
+                                      motion.Row("", start + 1.0, 1, 3)};
+  const std::vector<ImageTime> off = {{"off.png", start - 5011200.0, 0, 4}};
+  EXPECT_EQ(
+      ErrorOf([&] { CameraPriorsFromNavigation(nav, &off, SomeCamera()); }),
+      "image_times.csv:4: image 'off.png' at navigation time 1723398800.25 "
+      "(2024-08-11T17:53:20.25Z) s lies outside the navigation of every dive, "
+      "even allowing one sampling interval beyond each end; dive 1: "
+      "1728410000.25 (2024-10-08T17:53:20.25Z) to 1728410001.25 "
+      "(2024-10-08T17:53:21.25Z) s, nav.csv lines 2 to 3");
+}
+
 // Yaw from 179 to -179 deg turns 2 deg through 180, not 358 back.
 TEST(CameraPrior, AttitudeTakesTheShorterArc) {
   NavRecord a;

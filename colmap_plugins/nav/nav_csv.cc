@@ -6,6 +6,7 @@
 
 #include "common/util/csv.h"
 #include "common/util/error.h"
+#include "common/util/time_text.h"
 
 namespace uw {
 
@@ -59,9 +60,9 @@ std::vector<NavRecord> ReadNavigationCsv(const std::filesystem::path& path) {
     if (previous != last_of_dive.end() &&
         !(record.time_s > records[previous->second].time_s)) {
       const NavRecord& before = records[previous->second];
-      throw ErrorAt(where, ": time ", record.time_s,
+      throw ErrorAt(where, ": time ", TimeText(record.time_s),
                     " s is not after the previous row of dive ", record.dive,
-                    " (line ", before.line, ", ", before.time_s,
+                    " (line ", before.line, ", ", TimeText(before.time_s),
                     " s); the rows of a dive must come in strictly "
                     "increasing time");
     }

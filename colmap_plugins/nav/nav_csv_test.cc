@@ -89,6 +89,12 @@ TEST_F(NavCsvTest, BadRowsNameFileAndLine) {
            "b.png,6,2,4,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n" +
            "c.png,4,1,4,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n",
        where + "4: time 4 s is not after the previous row of dive 1 (line 2"},
+      // Unix times in full, with their calendar time: not 1.72841e+09.
+      {kHeader + "a.png,1728410000.25,1,4,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n" +
+           "b.png,1728410000.25,1,4,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n",
+       where + "3: time 1728410000.25 (2024-10-08T17:53:20.25Z) s is not "
+               "after the previous row of dive 1 (line 2, 1728410000.25 "
+               "(2024-10-08T17:53:20.25Z) s)"},
       {"image_name,time,x,y,z\n", where + "1: expected the header "},
       {"# no header\n" + good, where + "2: expected the header"},
       {kHeader, path_.string() + ": no navigation rows"},

@@ -1,0 +1,47 @@
+#include "common/util/time_text.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <ctime>
+#include <string>
+
+#include <fmt/format.h>
+
+namespace uw {
+
+std::string SecondsText(double seconds) {
+  if (!std::isfinite(seconds)) return fmt::format("{}", seconds);
+  // fmt's shortest round trip picks exponent notation when it is shorter;
+  // then the same digits are printed positionally, with as many decimals as
+  // the mantissa has beyond the exponent.
+  const std::string shortest = fmt::format("{}", seconds);
+  const size_t e = shortest.find('e');
+  if (e == std::string::npos) return shortest;
+  const size_t point = shortest.find('.');
+  const int mantissa_decimals = point == std::string::npos || point > e
+                                    ? 0
+                                    : static_cast<int>(e - point - 1);
+  const int exponent = std::atoi(shortest.c_str() + e + 1);
+  return fmt::format("{:.{}f}", seconds,
+                     std::max(0, mantissa_decimals - exponent));
+}
+
+std::string TimeText(double seconds) {
+  const std::string text = SecondsText(seconds);
+  constexpr double kFirstUnixTime = 1e8;          // 1973-03-03
+  constexpr double kLastUnixTime = 4102444800.0;  // 2100-01-01
+  if (!(seconds >= kFirstUnixTime && seconds < kLastUnixTime)) return text;
+  const double whole = std::floor(seconds);
+  const std::time_t time = static_cast<std::time_t>(whole);
+  std::tm utc{};
+  gmtime_r(&time, &utc);
+  // The fraction as SecondsText gave it: the digits after its point.
+  const size_t point = text.find('.');
+  const std::string fraction =
+      point == std::string::npos ? "" : text.substr(point);
+  return fmt::format("{} ({:04d}-{:02d}-{:02d}T{:02d}:{:02d}:{:02d}{}Z)", text,
+                     utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday,
+                     utc.tm_hour, utc.tm_min, utc.tm_sec, fraction);
+}
+
+}  // namespace uw

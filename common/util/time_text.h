@@ -1,0 +1,23 @@
+// Times as text a user can check against their logs: every digit the value
+// holds, never 1.72841e+09 (a Unix time with its last four digits, and the
+// fraction, gone), and the calendar time next to a Unix time, so that a
+// clock days off shows in the message itself.
+#pragma once
+
+#include <string>
+
+namespace uw {
+
+// The shortest text that reads back to the same double, in positional
+// notation: 1728410000.25, 1700000000, 0.00001234, -3.5. Non-finite values
+// as "nan", "inf", "-inf".
+std::string SecondsText(double seconds);
+
+// SecondsText, and for a time from 1973 to 2100 read as Unix time (s since
+// 1970-01-01 UTC) the UTC calendar time it is:
+//   "1728410000.25 (2024-10-08T17:53:20.25Z)".
+// Smaller values (seconds since a survey's start) are left alone: 1e8 s is
+// three years.
+std::string TimeText(double seconds);
+
+}  // namespace uw
