@@ -45,21 +45,21 @@ void ModelAlignmentOptions::Check() const {
   similarity.Check();
 }
 
-std::vector<ReferencePosition> NavigationReferences(
+NavigationReferenceSet NavigationReferences(
     const PosePriorImportOptions& options, const Reconstruction& model) {
   std::vector<std::pair<std::string, camera_t>> images;
   for (const Image& image : model.Images()) {
     images.emplace_back(image.name, image.camera_id);
   }
-  std::vector<ReferencePosition> references;
-  for (const CameraPrior& prior :
-       LoadCameraPriors(options, images, "the model",
-                        ImagesNamedByNavigation::kAny)
-           .priors) {
-    references.push_back(
+  const LoadedCameraPriors loaded =
+      LoadCameraPriors(options, images, "the model");
+  NavigationReferenceSet set;
+  for (const CameraPrior& prior : loaded.priors) {
+    set.references.push_back(
         {prior.image_name, prior.position, prior.position_covariance});
   }
-  return references;
+  set.other_images = loaded.other_images;
+  return set;
 }
 
 TimedPath NavigationPath(const PosePriorImportOptions& options) {
@@ -180,8 +180,12 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
                             options.database_path + " (pose priors)",
                             options.similarity);
   } else {
-    alignment = AlignByName(model, NavigationReferences(options.nav, model),
+    const NavigationReferenceSet navigation =
+        NavigationReferences(options.nav, model);
+    alignment = AlignByName(model, navigation.references,
                             options.nav.nav_path.string(), options.similarity);
+    alignment.num_references += navigation.other_images.size();
+    alignment.unknown_names = navigation.other_images;
   }
   if (alignment.image_names.size() <
       static_cast<size_t>(options.min_common_images)) {

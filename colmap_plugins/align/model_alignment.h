@@ -61,11 +61,15 @@ struct ModelAlignment {
   std::vector<std::string> warnings;
 };
 
-// Camera-centre priors of the model's images from navigation, by name.
-// Unlike pose_prior_importer, rows of images the model lacks are no error:
-// a reconstruction rarely registers every image (they end up in
+// Camera-centre priors of the model's images from navigation, by name, and
+// the images of the rows left out: a reconstruction rarely registers every
+// image (LoadCameraPriors; AlignModel reports them as
 // ModelAlignment::unknown_names).
-std::vector<ReferencePosition> NavigationReferences(
+struct NavigationReferenceSet {
+  std::vector<ReferencePosition> references;
+  std::vector<std::string> other_images;
+};
+NavigationReferenceSet NavigationReferences(
     const PosePriorImportOptions& options, const Reconstruction& model);
 
 // The navigation as a path of camera centres at the log's own times (with

@@ -105,10 +105,12 @@ TEST(ModelAlignment, NavigationRowsOfOtherImagesAreNoError) {
   ModelAlignmentOptions options;
   options.nav.nav_path = WriteNav(dir);
   const Reconstruction model = FiveImages();
-  const std::vector<ReferencePosition> references =
+  const NavigationReferenceSet navigation =
       NavigationReferences(options.nav, model);
-  ASSERT_EQ(references.size(), 6u);
-  EXPECT_EQ(references.back().image_name, "unregistered.png");
+  const std::vector<ReferencePosition>& references = navigation.references;
+  ASSERT_EQ(references.size(), 5u);
+  EXPECT_EQ(navigation.other_images,
+            std::vector<std::string>{"unregistered.png"});
   ASSERT_TRUE(references.front().covariance);
   EXPECT_NEAR((*references.front().covariance)(0, 0), 0.01, 1e-12);
 

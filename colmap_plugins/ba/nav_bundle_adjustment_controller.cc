@@ -158,8 +158,8 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
                    model->Images().size(), model->Points3D().size()));
   if (options.priors.HasPriorSource()) {
     Emit(progress,
-         fmt::format("Priors: {} images ({} priors of images not in the "
-                     "model)",
+         fmt::format("Priors: {} images ({} rows of images not in the "
+                     "model, left out)",
                      inputs.priors.size(), inputs.num_priors_without_image));
   }
   return AdjustModelWithNavigation(options, inputs, model, progress);

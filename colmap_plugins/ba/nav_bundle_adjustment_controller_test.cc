@@ -295,7 +295,7 @@ TEST(NavBundleAdjustmentController, LoadsThePriorsOfTheNavigation) {
       AdjustModelWithNavigation(options, &model, Into(&lines));
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[1],
-            "Priors: 16 images (0 priors of images not in the model)");
+            "Priors: 16 images (0 rows of images not in the model, left out)");
   EXPECT_EQ(result.num_priors, 16u);
   EXPECT_LT(test::CameraCenterRmse(model, scene.truth), 0.25);
 
@@ -310,7 +310,7 @@ TEST(NavBundleAdjustmentController, LoadsThePriorsOfTheNavigation) {
       16u);
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[1],
-            "Priors: 16 images (1 priors of images not in the model)");
+            "Priors: 16 images (1 rows of images not in the model, left out)");
 
   // A log none of whose rows names an image of the model is another
   // survey's.
@@ -324,8 +324,45 @@ TEST(NavBundleAdjustmentController, LoadsThePriorsOfTheNavigation) {
   options.priors.nav.nav_path = dir / "other.csv";
   Reconstruction untouched = ModelInItsOwnFrame(scene);
   ExpectErrorContaining([&] { AdjustModelWithNavigation(options, &untouched); },
-                        "none of its 2 priors is of an image of the model "
-                        "scene (16 images)");
+                        "other.csv: none of its 2 rows names an image of the "
+                        "model scene (16 images)");
+}
+
+// A log sampled at its own times, and image times that name an image the
+// mapper did not register, taken an hour after the navigation ends: left
+// out before it is placed (it has no prior to give), counted, and the run
+// goes on.
+TEST(NavBundleAdjustmentController, ImageTimesOfUnregisteredImagesAreLeftOut) {
+  const fs::path dir = testing::FreshTestDir("uw_nav_ba_controller_times");
+  const test::TestScene scene = SmallScene();
+  const fs::path with_names = WriteNav(scene, dir);
+  // The same log without its image names, and the names with their times.
+  std::ifstream in(with_names);
+  std::ofstream nav(dir / "series.csv");
+  std::ofstream times(dir / "times.csv");
+  times << "image_name,time\n";
+  std::string line;
+  std::getline(in, line);
+  nav << line.substr(line.find(',') + 1) << "\n";
+  while (std::getline(in, line)) {
+    const size_t comma = line.find(',');
+    nav << line.substr(comma + 1) << "\n";
+    times << line.substr(0, line.find(',', comma + 1)) << "\n";
+  }
+  times << "unregistered.png,3600\n";
+  nav.close();
+  times.close();
+  NavBundleAdjustmentControllerOptions options = FixedWeight(2.0);
+  options.priors.nav.nav_path = dir / "series.csv";
+  options.priors.nav.image_times_path = dir / "times.csv";
+  Reconstruction model = ModelInItsOwnFrame(scene);
+  std::vector<std::string> lines;
+  EXPECT_EQ(AdjustModelWithNavigation(options, &model, Into(&lines)).num_priors,
+            16u);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[1],
+            "Priors: 16 images (1 rows of images not in the model, left out)");
+  EXPECT_LT(test::CameraCenterRmse(model, scene.truth), 0.25);
 }
 
 TEST(NavBundleAdjustmentController, LCurveSweepsACopyOfTheModel) {

@@ -63,16 +63,13 @@ NavInputs LoadNavInputs(const NavInputOptions& options,
       }
     }
     // A mapper rarely registers every image (colmap's model of the scarp
-    // survey lacked 13 of 268), so against the model the rows of the
-    // others are left out and counted; a database lists every image, and
-    // a row naming none of them is an error there.
-    const bool against_model = options.database_path.empty();
-    const std::string source =
-        against_model ? "the model " + model_name : options.database_path;
+    // survey lacked 13 of 268): the rows of the others are left out and
+    // counted, here and by NavInputsForModel.
+    const std::string source = options.database_path.empty()
+                                   ? "the model " + model_name
+                                   : options.database_path;
     const LoadedCameraPriors loaded =
-        LoadCameraPriors(options.nav, images, source,
-                         against_model ? ImagesNamedByNavigation::kAny
-                                       : ImagesNamedByNavigation::kOnlyGiven);
+        LoadCameraPriors(options.nav, images, source);
     NavInputs inputs = NavInputsForModel(
         loaded.priors, loaded.rig.cameras.empty() ? nullptr : &loaded.rig,
         model, options.position_sigma_m, options.override_sigma,
@@ -85,6 +82,7 @@ NavInputs LoadNavInputs(const NavInputOptions& options,
                     " images): a log of another survey, or image names "
                     "spelt otherwise?");
     }
+    inputs.num_priors_without_image += loaded.other_images.size();
     return inputs;
   }
   if (!options.database_path.empty()) {

@@ -20,7 +20,9 @@ struct NavInputs {
   std::vector<ImagePosePrior> priors;
   std::unordered_map<image_t, double> image_times;  // navigation clock
   std::optional<SoftRig> rig;
-  size_t num_priors_without_image = 0;  // images not registered in the model
+  // Navigation rows (or image times) of images the model lacks: not
+  // registered by the mapper, or not in the database.
+  size_t num_priors_without_image = 0;
 };
 
 // Where the priors of the navigation-fused adjustment come from

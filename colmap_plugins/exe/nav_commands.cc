@@ -38,6 +38,11 @@ void PrintSummary(const std::string& database_path,
             << summary.num_extrapolated << " extrapolated)\n"
             << "Images without priors: " << summary.num_images_without_priors
             << "\n";
+  if (!summary.other_images.empty()) {
+    std::cout << "Rows naming no image of the database, left out: "
+              << summary.other_images.size() << " (e.g. "
+              << summary.other_images.front() << ")\n";
+  }
   if (summary.num_singular_covariances > 0) {
     std::cout << "Priors without covariance (a zero sigma in the log): "
               << summary.num_singular_covariances << "\n";

@@ -57,7 +57,7 @@ PosePrior DatabasePosePrior(const CameraPrior& prior, uint32_t image_id) {
 LoadedCameraPriors LoadCameraPriors(
     const PosePriorImportOptions& options,
     const std::vector<std::pair<std::string, camera_t>>& images,
-    const std::string& images_source, ImagesNamedByNavigation named) {
+    const std::string& images_source) {
   options.Check();
   LoadedCameraPriors loaded;
   NavigationSources sources;
@@ -74,7 +74,6 @@ LoadedCameraPriors LoadCameraPriors(
   }
   const RigConfig& rig = loaded.rig;
   const bool has_rig = !rig.cameras.empty();
-  const bool only_given = named == ImagesNamedByNavigation::kOnlyGiven;
 
   std::unordered_map<std::string, camera_t> camera_of_name;
   std::vector<std::string> image_names;
@@ -82,31 +81,44 @@ LoadedCameraPriors LoadCameraPriors(
     camera_of_name.emplace(name, camera_id);
     image_names.push_back(name);
   }
-  const auto require_image = [&](const std::string& name,
-                                 const std::string& where, const char* hint) {
-    if (only_given && camera_of_name.count(name) == 0) {
-      throw ErrorAt(where, ": image '", name, "' is not in ", images_source,
-                    hint);
-    }
+  const auto given = [&](const std::string& name) {
+    return camera_of_name.count(name) != 0;
+  };
+  // No row of `rows` (image_times.csv's, or nav.csv's) names a given image.
+  const auto none_given = [&](size_t num_rows, const std::string& file) {
+    return ErrorAt(file, ": none of its ", num_rows, " rows names an image of ",
+                   images_source, " (", images.size(),
+                   " images): a log of another survey, or image names spelt "
+                   "otherwise?");
   };
   const std::vector<ImageTime>* times = nullptr;
   if (!options.image_times_path.empty()) {
+    // Left out before placing: an image the mapper dropped may have been
+    // taken outside the navigation's span.
+    std::vector<ImageTime> kept;
     for (const ImageTime& time : image_times) {
-      require_image(time.image_name,
-                    sources.image_times + ":" + std::to_string(time.line), "");
+      if (given(time.image_name)) {
+        kept.push_back(time);
+      } else {
+        loaded.other_images.push_back(time.image_name);
+      }
     }
+    if (kept.empty()) {
+      throw none_given(image_times.size(), sources.image_times);
+    }
+    image_times = std::move(kept);
     times = &image_times;
   } else {
-    if (only_given && nav.front().image_name.empty()) {
+    if (nav.front().image_name.empty()) {
       throw ErrorAt(sources.nav, ":", nav.front().line,
                     ": the navigation has no image names; give the images' "
                     "times (--image_times)");
     }
     for (const NavRecord& row : nav) {
-      require_image(
-          row.image_name, sources.nav + ":" + std::to_string(row.line),
-          " (without image_times.csv every navigation row must name an "
-          "image; with it the log is a time series)");
+      if (!given(row.image_name)) loaded.other_images.push_back(row.image_name);
+    }
+    if (loaded.other_images.size() == nav.size()) {
+      throw none_given(nav.size(), sources.nav);
     }
     if (has_rig) {
       // The log samples the reference camera; the others fire with the
@@ -116,7 +128,7 @@ LoadedCameraPriors LoadCameraPriors(
       times = &image_times;
     }
   }
-  if (only_given && has_rig && times != nullptr) {
+  if (has_rig && times != nullptr) {
     for (const ImageTime& time : *times) {
       const RigCameraConfig* camera = rig.CameraOfImage(time.image_name);
       const camera_t camera_id = camera_of_name.at(time.image_name);
@@ -131,6 +143,13 @@ LoadedCameraPriors LoadCameraPriors(
   }
   loaded.priors = CameraPriorsFromNavigation(nav, times, options.nav_to_camera,
                                              has_rig ? &rig : nullptr, sources);
+  // Without image times each row is its image's prior, placed at its own
+  // time whatever the image; the rows of other images go now.
+  loaded.priors.erase(std::remove_if(loaded.priors.begin(), loaded.priors.end(),
+                                     [&](const CameraPrior& prior) {
+                                       return !given(prior.image_name);
+                                     }),
+                      loaded.priors.end());
   return loaded;
 }
 
@@ -192,6 +211,7 @@ PosePriorImportSummary ImportPosePriors(
   summary.num_priors = priors.size();
   summary.num_images_without_priors =
       summary.num_database_images - summary.num_priors;
+  summary.other_images = loaded.other_images;
   summary.written = database.WritePosePriors(database_priors);
   return summary;
 }

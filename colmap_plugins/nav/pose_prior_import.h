@@ -40,6 +40,8 @@ struct PosePriorImportSummary {
   // Images of the database that got no prior (no row, no time, no rig
   // camera): they keep whatever prior they had.
   size_t num_images_without_priors = 0;
+  // Rows naming no image of the database (LoadedCameraPriors).
+  std::vector<std::string> other_images;
   // Priors whose position covariance is singular (a zero sigma in the log,
   // as in uwsim's truth/nav.csv): COLMAP cannot weight them by it.
   size_t num_singular_covariances = 0;
@@ -51,42 +53,36 @@ struct PosePriorImportSummary {
 // in the camera frame.
 PosePrior DatabasePosePrior(const CameraPrior& prior, uint32_t image_id);
 
-// Which images the navigation may name.
-enum class ImagesNamedByNavigation {
-  // Only the given images (pose_prior_importer, bundle_adjuster): a row of
-  // nav.csv (without image_times) or of image_times.csv naming another
-  // image is an error, and so is an image whose camera is not the rig
-  // camera of its prefix.
-  kOnlyGiven,
-  // Any (model_aligner): a reconstruction rarely registers every image, so
-  // rows of other images are priors too, for the caller to leave out.
-  kAny,
-};
-
-// The navigation inputs of `options` read, checked against each other and,
-// as `named` says, against `images` (name, camera id; named
-// `images_source` in messages), and turned into one prior per image
+// The navigation inputs of `options` read, checked against each other and
+// against `images` (name, camera id; named `images_source` in messages),
+// and turned into one prior per image of `images` that the inputs place
 // (CameraPriorsFromNavigation). With a rig and without image_times, the
 // images of `images` are placed by the rig's delays after the reference
-// camera's rows (RigImageTimes). Throws uw::Error naming the file and line.
+// camera's rows (RigImageTimes).
+// Every real survey has images the mapper did not register (15 of 25 on a
+// BlueROV2 pass), and a log may name images that never reached the
+// database: rows of image_times.csv (or of nav.csv without it) naming no
+// image of `images` are left out before anything is placed, and named in
+// `other_images`. Throws uw::Error naming the file and line when no row
+// names any of them (a log of another survey, or names spelt otherwise),
+// and for an image whose camera is not the rig camera of its prefix.
 struct LoadedCameraPriors {
   std::vector<NavRecord> nav;
   RigConfig rig;  // no cameras: no rig
   std::vector<CameraPrior> priors;
+  // The images of the rows left out, in file order.
+  std::vector<std::string> other_images;
 };
 LoadedCameraPriors LoadCameraPriors(
     const PosePriorImportOptions& options,
     const std::vector<std::pair<std::string, camera_t>>& images,
-    const std::string& images_source,
-    ImagesNamedByNavigation named = ImagesNamedByNavigation::kOnlyGiven);
+    const std::string& images_source);
 
 // Reads every input and checks it before anything is written, then writes
 // the priors in one transaction. Throws uw::Error naming the file and line
-// (and the database unchanged) for anything Read*, CameraPriorsFromNavigation
-// or Database::WritePosePriors refuse, and for navigation rows (without
-// image_times) or image_times rows that name no image of the database, rig
-// cameras the database does not have, and images whose database camera is
-// not the rig camera of their prefix.
+// (and the database unchanged) for anything LoadCameraPriors or
+// Database::WritePosePriors refuse, and for rig cameras the database does
+// not have. Rows naming images the database lacks are left out and counted.
 PosePriorImportSummary ImportPosePriors(
     const std::filesystem::path& database_path,
     const PosePriorImportOptions& options);
