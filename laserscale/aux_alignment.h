@@ -24,10 +24,17 @@ void MatchHistogram(const cv::Mat& main, const cv::Mat& mask, cv::Mat* aux);
 // aux the spots move with the camera, not with the scene.
 void FlattenHighlights(cv::Mat* patch);
 
+// The NCC of `patch` (CV_32F, one channel) with another frame of the same
+// scene and sensor: s² / (s² + n²), with n² the noise variance (from the
+// median absolute second difference) and s² the patch's variance less it.
+double SameSceneNcc(const cv::Mat& patch);
+
 // LSD steps 2-4: the aux patch of the ROI, aligned on the laser's weakest
 // channel (the spots, which move differently from the texture, barely pull
 // it) and matched to the image's histograms. Sets roi->aux and roi->valid,
-// or roi->texture_note when the aux cannot be trusted.
+// or roi->texture_note when the aux cannot be trusted, and
+// roi->aux_mismatch when it shows another scene (an NCC below
+// min_alignment_ncc where SameSceneNcc is 0.75 or more).
 // `image`, `aux`: 8-bit BGR of one size; `roi` from PredictRois.
 void AlignAux(const cv::Mat& image, const cv::Mat& aux,
               const SpotDetectorOptions& options, Roi* roi);

@@ -162,8 +162,13 @@ std::vector<DetectedSpot> DetectSpots(const cv::Mat& image, const cv::Mat& aux,
       spot.problem = "unstable: detected in " + Percent(spot.detection_rate) +
                      " of iterations";
     }
-    if (!spot.stable && !roi.texture_note.empty()) {
-      spot.problem += " (" + roi.texture_note + ")";
+    if (!roi.texture_note.empty()) {
+      if (spot.stable && roi.aux_mismatch && options.require_texture_removal) {
+        spot.stable = false;
+        spot.problem = "not used: " + roi.texture_note;
+      } else if (!spot.stable) {
+        spot.problem += " (" + roi.texture_note + ")";
+      }
     }
   }
   return spots;

@@ -25,6 +25,14 @@ struct SpotDetectorOptions {
   int aux_search_px = 64;
   double min_alignment_ncc = 0.5;
   int ecc_iterations = 50;
+  // A spot found where the aux shows another scene (it did not match
+  // where its texture would have: AlignAux) is not used (not stable,
+  // problem "not used: texture not removed ..."): with the texture left
+  // in, a white shell or a highlight passes for the laser, and passes every
+  // Monte Carlo iteration (seen on real frames without lasers: a shell,
+  // rate 1.0, aux NCC 0.30). An aux merely too noisy to match keeps its
+  // spots. false keeps them all.
+  bool require_texture_removal = true;
 
   // 6. Gaussian low-pass against noise and compression artefacts.
   double lowpass_sigma_px = 1.0;

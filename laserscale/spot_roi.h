@@ -57,6 +57,9 @@ struct Roi {
   std::array<cv::Mat, 3> clipped_main;
   std::array<cv::Mat, 3> clipped_aux;
   std::string texture_note;  // why the texture was not removed
+  // With texture_note: the aux shows another scene, not just a noisy one
+  // (its texture would have matched; AlignAux).
+  bool aux_mismatch = false;
   // Of the nominal low-passed texture-removed image (of the image without
   // an aux), and of the aux's side of the difference (for its print).
   Background background;

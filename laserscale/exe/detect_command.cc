@@ -51,6 +51,10 @@ void AddDetectFlags(CommandLine* cli, DetectOptions* options) {
            "Farthest scene distance, for the spot regions");
   cli->Add("--noise_sigma", &detector.noise_sigma,
            "Image noise sigma (0-255 units); < 0: estimate");
+  cli->Add("--require_texture_removal", &detector.require_texture_removal,
+           "Do not use a spot in a region where the auxiliary image did not "
+           "match (the texture left in, a shell or highlight can pass for "
+           "the laser); 0 keeps it");
   cli->Add("--num_threads", &detector.num_threads, "Threads (<= 0: all)");
 }
 
