@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -912,15 +913,25 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
 
   // --------------------------------------------------------------- summary
   std::vector<std::vector<std::string>> summary;
-  const std::string registered = std::to_string(images.size());
-  summary.push_back({"Images", navigation.empty()
-                                   ? registered + " registered"
-                                   : registered + " registered of " +
-                                         std::to_string(navigation.size()) +
-                                         " in the navigation"});
+  // A log sampled at its own rate names no images: its rows are samples,
+  // not images (4484 rows for 25 images on a BlueROV2 dive).
+  std::set<std::string> navigation_images;
+  for (const NavRecord& record : navigation) {
+    if (!record.image_name.empty()) navigation_images.insert(record.image_name);
+  }
+  const std::string registered = std::to_string(images.size()) + " registered";
+  summary.push_back(
+      {"Images",
+       navigation.empty() ? registered
+       : navigation_images.empty()
+           ? registered + "; the navigation: " +
+                 std::to_string(navigation.size()) + " samples, no image names"
+           : registered + " of " + std::to_string(navigation_images.size()) +
+                 " images in the navigation"});
   summary.push_back({"Sparse points", std::to_string(model.Points3D().size())});
   report["images"] = {{"registered", images.size()},
-                      {"in_navigation", navigation.size()},
+                      {"navigation_rows", navigation.size()},
+                      {"navigation_images", navigation_images.size()},
                       {"points3D", model.Points3D().size()}};
   if (laser && laser->scale) {
     summary.push_back({"Scale s (multiply by s for metres)",

@@ -69,8 +69,9 @@ TEST_F(SurveyReportTest, WritesEverySectionFromEveryInput) {
   EXPECT_EQ(cv::imread((out / "overlays/L0.png").string()).cols, 640);
   // The figures come from the inputs.
   for (const char* text :
-       {"1.01250", "[1.00750, 1.01750]", "4 registered of 5 in the navigation",
-        "0.4077 px/m", "L0-L1", "2.50 mm", "95.0 %", "Total time", "60 s",
+       {"1.01250", "[1.00750, 1.01750]",
+        "4 registered of 5 images in the navigation", "0.4077 px/m", "L0-L1",
+        "2.50 mm", "95.0 %", "Total time", "60 s",
         "colmap BA + model_aligner (camera centres)", "(+0.250, -0.500, ",
         // The uncertainty section and the laser scale's model sampling.
         "gauge <b>priors</b>", "0.0310", "3 weak points",
@@ -133,6 +134,33 @@ TEST_F(SurveyReportTest, LeavesOutSectionsWithoutInputsAndSaysSo) {
   }
   EXPECT_NE(html.find("4 registered"), std::string::npos);
   ExpectImagesInFolder(out, 0);
+}
+
+// A log sampled at its own rate names no images: its rows are samples, and
+// the report does not count them as images.
+TEST_F(SurveyReportTest, ALogOfSamplesIsNotCountedAsImages) {
+  SurveyReportInputs with_samples;
+  with_samples.model_path = inputs_.model_path;
+  with_samples.nav_path = dir_ / "samples.csv";
+  std::string samples =
+      "time,dive,x,y,z,roll,pitch,yaw,std_x,std_y,std_z,std_roll,std_pitch,"
+      "std_yaw\n";
+  for (int i = 0; i < 40; ++i) {
+    samples += std::to_string(0.1 * i) + ",1," + std::to_string(1.0 + 0.2 * i) +
+               ",2,2.5,0,0,0,0.5,0.5,0.05,0.01,0.01,0.05\n";
+  }
+  WriteTestText(with_samples.nav_path, samples);
+  const fs::path out = dir_ / "report";
+  WriteSurveyReport(with_samples, SurveyReportOptions(), out);
+  const std::string html = ReadFileToString(out / "index.html");
+  EXPECT_NE(html.find("4 registered; the navigation: 40 samples, no image "
+                      "names"),
+            std::string::npos);
+  EXPECT_EQ(html.find("registered of"), std::string::npos);
+  const nlohmann::json report =
+      nlohmann::json::parse(ReadFileToString(out / "report.json"));
+  EXPECT_EQ(report["images"]["navigation_rows"], 40);
+  EXPECT_EQ(report["images"]["navigation_images"], 0);
 }
 
 TEST_F(SurveyReportTest, ABadInputIsNamedAndNothingIsWritten) {

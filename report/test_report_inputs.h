@@ -82,7 +82,7 @@ inline SurveyReportInputs WriteTestReportInputs(
   AddGrid(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(8, 0, 0.8),
           Eigen::Vector3d(0, 4, 0), 16, 8, &mesh);
   inputs.mesh_path = dir / "mesh.ply";
-  WritePly(mesh, inputs.mesh_path);
+  WritePly(mesh, inputs.mesh_path, "test mesh in the test model's frame");
 
   inputs.ba_report_path = dir / "ba_report.json";
   WriteTestText(inputs.ba_report_path,

@@ -224,7 +224,9 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
       {"num_laser_images", shots.size()},
       {"num_triangles", summary.num_triangles}};
   WriteModel(TrueModel(cameras, images), out / "truth", ModelFormat::kText);
-  WritePly(world.mesh, out / "truth" / "mesh.ply");
+  WritePly(world.mesh, out / "truth" / "mesh.ply",
+           "uwsim world mesh; units: metres, world frame x east, y north, z "
+           "up");
   std::vector<PendingFile> files = {
       TextFile(out / "image_times.csv", ImageTimesCsv(all_images)),
       TextFile(out / "laser_image_times.csv", LaserImageTimesCsv(shots)),

@@ -35,7 +35,7 @@ class SurveyMapTest : public ::testing::Test {
     TriangleMesh mesh;
     AddGrid(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(20, 0, 2),
             Eigen::Vector3d(0, 10, 0), 20, 10, &mesh);
-    WritePly(mesh, dir_ / "truth" / "mesh.ply");
+    WritePly(mesh, dir_ / "truth" / "mesh.ply", "test world; metres");
 
     const std::vector<Eigen::Vector3d> positions = {
         {4, 2, 3}, {9, 2, 3}, {14, 2, 3}, {14, 7, 3}, {9, 7, 3}, {4, 7, 3}};

@@ -37,6 +37,15 @@ TEST(DenseMesher, DefaultSurveyMeshIsAccurateAndComplete) {
   EXPECT_NE(log.find("depth maps 33/33"), std::string::npos) << log;
   EXPECT_NE(log.find("33 of 33 images with a depth map"), std::string::npos)
       << log;
+  // The header says the mesh is in the model's frame and units: only the
+  // model knows whether they are metres.
+  const std::string header = ReadFileToString(mesh).substr(0, 400);
+  EXPECT_NE(header.find("comment uwcolmap dense_mesher of the model "),
+            std::string::npos)
+      << header;
+  EXPECT_NE(header.find("that model's frame and units (metres only if it is "
+                        "metric)"),
+            std::string::npos);
 
   const fs::path json = dir / "compare.json";
   const auto comparer =

@@ -88,7 +88,7 @@ void WriteTrueSurfaceInModelFrame(const fs::path& path) {
   for (Eigen::Vector3d& vertex : surface.vertices) {
     vertex = model_from_truth * vertex;
   }
-  WritePly(surface, path);
+  WritePly(surface, path, "test surface in the model's frame");
 }
 
 // Acceptance 5: each laser image localized against stock colmap's model,

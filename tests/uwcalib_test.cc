@@ -376,7 +376,7 @@ void WriteMission(const testing_mission::Mission& mission,
   }
   fs::create_directories(dir / "sparse");
   WriteModel(model, dir / "sparse", ModelFormat::kBinary);
-  WritePly(floor, dir / "mesh.ply");
+  WritePly(floor, dir / "mesh.ply", "test floor; metres");
   std::ofstream(dir / "poses.json") << LaserPosesJsonText(poses);
   std::map<std::string, ImageSpots> by_image;
   for (const auto& laser_spots : mission.spots) {

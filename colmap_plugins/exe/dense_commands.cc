@@ -105,7 +105,11 @@ void RunDenseMesher(const DenseMesherCommandOptions& options) {
   const DenseMeshResult result =
       DenseMesh(ReadModel(options.input_path), options.image_path, workspace,
                 options.mesher, PrintProgress);
-  WritePly(result.mesh, options.output_path);
+  // Only the model knows its frame: a stock colmap model's is arbitrary in
+  // scale and axes (its +z often points into the seabed).
+  WritePly(result.mesh, options.output_path,
+           "uwcolmap dense_mesher of the model " + options.input_path +
+               ": that model's frame and units (metres only if it is metric)");
   if (!options.fused_path.empty()) {
     WriteOrientedPly(result.points, Eigen::Vector3d::Zero(),
                      options.fused_path);

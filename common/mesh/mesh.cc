@@ -586,7 +586,13 @@ Eigen::Vector3d TriangleMesh::TriangleNormal(size_t triangle) const {
   return (vertices[t[1]] - a).cross(vertices[t[2]] - a).normalized();
 }
 
-void WritePly(const TriangleMesh& mesh, const std::filesystem::path& path) {
+void WritePly(const TriangleMesh& mesh, const std::filesystem::path& path,
+              const std::string& frame) {
+  if (frame.empty() || frame.find_first_of("\r\n") != std::string::npos) {
+    throw ErrorAt(path.string(),
+                  ": the mesh's frame must be stated on one line, got '", frame,
+                  "'");
+  }
   // Refuse what ReadPly would reject, so that every written mesh reads back.
   const int64_t num_vertices = static_cast<int64_t>(mesh.vertices.size());
   if (num_vertices > std::numeric_limits<int>::max()) {
@@ -610,11 +616,12 @@ void WritePly(const TriangleMesh& mesh, const std::filesystem::path& path) {
   }
   WriteFilesAtomically(
       {{path,
-        [&mesh](std::ostream& stream) {
+        [&mesh, &frame](std::ostream& stream) {
           stream << "ply\n"
                     "format binary_little_endian 1.0\n"
-                    "comment uwsim world mesh; units: metres, world frame "
-                    "x east, y north, z up\n"
+                    "comment "
+                 << frame
+                 << "\n"
                     "element vertex "
                  << mesh.vertices.size()
                  << "\n"

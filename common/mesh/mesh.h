@@ -20,8 +20,12 @@ struct TriangleMesh {
 };
 
 // Binary little-endian PLY ("vertex" x y z as double, "face" as uchar count
-// + int indices), written to a temporary file and renamed.
-void WritePly(const TriangleMesh& mesh, const std::filesystem::path& path);
+// + int indices), written to a temporary file and renamed. `frame` (one
+// line, not empty) goes into the header as a comment: which frame and
+// units the vertices are in, as the writer knows them ("uwsim world mesh;
+// metres, x east, y north, z up", or a COLMAP model's own frame and units).
+void WritePly(const TriangleMesh& mesh, const std::filesystem::path& path,
+              const std::string& frame);
 
 // Reads what WritePly writes and ASCII / binary PLY with float or double
 // vertices and triangle faces; throws uw::Error naming the file otherwise.

@@ -84,7 +84,7 @@ TEST_F(MeshTest, BinaryRoundTripIsBitExact) {
                    {std::nextafter(1.0, 2.0), -1e300, 2.5e-8}};
   mesh.triangles = {{0, 1, 2}, {0, 2, 3}, {3, 2, 1}};
   const std::filesystem::path path = dir_ / "sub" / "mesh.ply";
-  WritePly(mesh, path);
+  WritePly(mesh, path, "a test's frame; units: none");
 
   const TriangleMesh read = ReadPly(path);
   ASSERT_EQ(read.vertices.size(), mesh.vertices.size());
@@ -102,9 +102,10 @@ TEST_F(MeshTest, BinaryRoundTripIsBitExact) {
   const std::string content = ReadFileToString(path);
   const size_t body = content.find("end_header\n") + 11;
   EXPECT_EQ(content.size() - body, 4 * 24 + 3 * 13);
-  EXPECT_NE(content.find("format binary_little_endian 1.0\n"),
-            std::string::npos);
-  EXPECT_NE(content.find("units: metres"), std::string::npos);
+  // The frame is stated in the header, as given.
+  EXPECT_EQ(content.find("format binary_little_endian 1.0\ncomment a test's "
+                         "frame; units: none\nelement vertex 4\n"),
+            4u);
   size_t files = 0;
   for ([[maybe_unused]] const auto& entry :
        std::filesystem::directory_iterator(path.parent_path())) {
@@ -321,10 +322,13 @@ TEST_F(MeshTest, WriteRefusesMeshesItCouldNotReadBack) {
   mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   mesh.triangles = {{0, 1, 3}};
   const std::filesystem::path path = dir_ / "out.ply";
-  EXPECT_THROW(WritePly(mesh, path), Error);
+  EXPECT_THROW(WritePly(mesh, path, "frame"), Error);
   mesh.triangles = {{0, 1, 2}};
+  // A frame that would break the header, or none.
+  EXPECT_THROW(WritePly(mesh, path, "two\nlines"), Error);
+  EXPECT_THROW(WritePly(mesh, path, ""), Error);
   mesh.vertices[1].y() = std::numeric_limits<double>::infinity();
-  EXPECT_THROW(WritePly(mesh, path), Error);
+  EXPECT_THROW(WritePly(mesh, path, "frame"), Error);
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 

@@ -61,7 +61,10 @@ void RunApply(const ApplyOptions& options) {
     for (Eigen::Vector3d& vertex : mesh.vertices) {
       vertex = scaled_from_model * vertex;
     }
-    WritePly(mesh, options.output_mesh);
+    WritePly(mesh, options.output_mesh,
+             fmt::format("laserscale apply: {} scaled by s = {:.6f}, the "
+                         "laser scale's metres, in its model's frame",
+                         options.input_mesh, scale));
     fmt::print("[apply] mesh scaled by {:.6f} into {}\n", scale,
                options.output_mesh.c_str());
   }

@@ -25,7 +25,9 @@ void AddSparseSurfaceFlags(CommandLine* cli,
 void RunSparseSurface(const SparseSurfaceCommandOptions& options) {
   const TriangleMesh mesh =
       SparseSurfaceMesh(ReadModel(options.input_path), options.surface);
-  WritePly(mesh, options.output_path);
+  WritePly(mesh, options.output_path,
+           "laserscale sparse_surface of the model " + options.input_path +
+               ": that model's frame and units (metres only if it is metric)");
   fmt::print("[sparse_surface] {} vertices, {} triangles written to {}\n",
              mesh.vertices.size(), mesh.triangles.size(),
              options.output_path.c_str());
