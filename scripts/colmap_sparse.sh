@@ -15,6 +15,16 @@
 # is the binary) and colmap spatial_matcher pairs each image with its
 # SPATIAL_NEIGHBORS (50) nearest in 3D, as a user with navigation would on a
 # survey of hundreds of images.
+#
+# Flags of your own for each colmap step (environment, split on spaces as
+# NAV_FLAGS is): EXTRACTOR_FLAGS (feature_extractor), MATCHER_FLAGS (the
+# matcher), MAPPER_FLAGS (mapper). A flag given there replaces the script's
+# default of the same name (colmap refuses a flag given twice). For 27 MP
+# frames, say:
+#   EXTRACTOR_FLAGS="--SiftExtraction.max_image_size 2400 --SiftExtraction.max_num_features 8000" \
+#     bash scripts/colmap_sparse.sh images out OPENCV
+# SINGLE_CAMERA=0 gives every image its own camera (default 1: one camera
+# for all, as one camera and lens took them).
 set -euo pipefail
 images=$1
 out=$2
@@ -42,16 +52,35 @@ fi
 mkdir -p "$out/logs" "$out/sparse"
 source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/run_step.sh"
 
-camera=(--ImageReader.single_camera 1 --ImageReader.camera_model "$model")
+# with_user_flags USER_FLAGS NAME VALUE [NAME VALUE ...] sets the array
+# `flags` to the NAME VALUE defaults that USER_FLAGS does not name, then
+# USER_FLAGS split on spaces.
+with_user_flags() {
+  local user=" $1 "
+  shift
+  flags=()
+  while (($# >= 2)); do
+    if [[ "$user" != *" $1 "* ]]; then flags+=("$1" "$2"); fi
+    shift 2
+  done
+  # shellcheck disable=SC2206
+  flags+=($user)
+}
+
+camera=(--ImageReader.camera_model "$model")
 if [[ -n "$params" ]]; then camera+=(--ImageReader.camera_params "$params"); fi
-run_step "$out/logs" feature_extractor colmap feature_extractor \
-  --database_path "$out/database.db" --image_path "$images" "${camera[@]}" \
+with_user_flags "${EXTRACTOR_FLAGS:-}" \
+  --ImageReader.single_camera "${SINGLE_CAMERA:-1}" \
   --SiftExtraction.use_gpu 0 --SiftExtraction.max_num_features 2000 \
   --SiftExtraction.first_octave 0
+run_step "$out/logs" feature_extractor colmap feature_extractor \
+  --database_path "$out/database.db" --image_path "$images" "${camera[@]}" \
+  "${flags[@]}"
 case "${MATCHER:-exhaustive}" in
   exhaustive)
+    with_user_flags "${MATCHER_FLAGS:-}" --SiftMatching.use_gpu 0
     run_step "$out/logs" exhaustive_matcher colmap exhaustive_matcher \
-      --database_path "$out/database.db" --SiftMatching.use_gpu 0
+      --database_path "$out/database.db" "${flags[@]}"
     ;;
   spatial)
     # NAV_FLAGS is a list of flags, split on spaces on purpose.
@@ -59,12 +88,14 @@ case "${MATCHER:-exhaustive}" in
     run_step "$out/logs" pose_prior_importer "$UWCOLMAP" pose_prior_importer \
       --database_path "$out/database.db" --nav "$NAV" ${NAV_FLAGS:-}
     # ignore_z 0: on a wall (scarp, breakwater) the lines are stacked in z.
-    run_step "$out/logs" spatial_matcher colmap spatial_matcher \
-      --database_path "$out/database.db" --SiftMatching.use_gpu 0 \
+    with_user_flags "${MATCHER_FLAGS:-}" --SiftMatching.use_gpu 0 \
       --SpatialMatching.is_gps 0 --SpatialMatching.ignore_z 0 \
       --SpatialMatching.max_num_neighbors "${SPATIAL_NEIGHBORS:-50}"
+    run_step "$out/logs" spatial_matcher colmap spatial_matcher \
+      --database_path "$out/database.db" "${flags[@]}"
     ;;
 esac
+with_user_flags "${MAPPER_FLAGS:-}"
 run_step "$out/logs" mapper colmap mapper --database_path "$out/database.db" \
-  --image_path "$images" --output_path "$out/sparse"
+  --image_path "$images" --output_path "$out/sparse" "${flags[@]}"
 test -f "$out/sparse/0/images.bin"
