@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/util/error.h"
+#include "common/util/nice_ticks.h"
 
 namespace uw {
 namespace {
@@ -59,15 +60,6 @@ double ShadeFactor(double shade) {
   return (0.25 + 0.75 * shade) / (0.25 + 0.75 * kSunInWorld.z());
 }
 
-// The smallest 1, 2 or 5 × 10^k not below `raw`.
-double NiceStep(double raw) {
-  const double power = std::pow(10.0, std::floor(std::log10(raw)));
-  for (const double mantissa : {1.0, 2.0, 5.0}) {
-    if (mantissa * power >= raw * (1.0 - 1e-9)) return mantissa * power;
-  }
-  return 10.0 * power;
-}
-
 // The largest 1, 2 or 5 × 10^k not above `raw`.
 double NiceLengthBelow(double raw) {
   const double power = std::pow(10.0, std::floor(std::log10(raw)));
@@ -75,14 +67,6 @@ double NiceLengthBelow(double raw) {
     if (mantissa * power <= raw * (1.0 + 1e-9)) return mantissa * power;
   }
   return power;
-}
-
-// A value with as many decimals as `step` needs.
-std::string FormatNumber(double value, double step) {
-  const int decimals =
-      std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
-  if (std::abs(value) < 1e-9 * step) value = 0.0;
-  return fmt::format("{:.{}f}", value, decimals);
 }
 
 class Figure {
@@ -297,7 +281,7 @@ void DrawAxes(const SurveyMap& map, Figure* figure) {
     const int bottom = area.y + area.height;
     cv::line(map.image, {column, bottom}, {column, bottom + tick}, kInk,
              figure->Px(1.5));
-    figure->Text(FormatNumber(x, x_step), column,
+    figure->Text(TickLabel(x, x_step), column,
                  bottom + tick + label_gap + figure->Px(2), 0.7, 0);
   }
   figure->Text("x east (m)", area.x + area.width / 2,
@@ -310,8 +294,7 @@ void DrawAxes(const SurveyMap& map, Figure* figure) {
         std::lround(map.PixelFromWorld(Eigen::Vector2d(x0, y)).y()));
     cv::line(map.image, {area.x - 1, row}, {area.x - 1 - tick, row}, kInk,
              figure->Px(1.5));
-    figure->Text(FormatNumber(y, y_step), area.x - tick - label_gap, row, 0.7,
-                 1);
+    figure->Text(TickLabel(y, y_step), area.x - tick - label_gap, row, 0.7, 1);
   }
   figure->VerticalText("y north (m)", area.x - figure->Px(100),
                        area.y + area.height / 2, 0.8);
@@ -428,8 +411,8 @@ void DrawLegend(const SurveyMapData& data, const SurveyMap& map, int top,
     const double z = z_low + k * (z_high - z_low) / 2.0;
     cv::line(map.image, {x, bar_top + bar_height},
              {x, bar_top + bar_height + figure->Px(6)}, kInk, figure->Px(1.5));
-    figure->Text(FormatNumber(z, z_step), x,
-                 bar_top + bar_height + figure->Px(22), 0.6, 0);
+    figure->Text(TickLabel(z, z_step), x, bar_top + bar_height + figure->Px(22),
+                 0.6, 0);
   }
 
   // North arrow at the right edge (the map is drawn north up), and left of
@@ -453,7 +436,7 @@ void DrawLegend(const SurveyMapData& data, const SurveyMap& map, int top,
                 {scale_left + length_px, scale_top + bar_thickness}, kInk,
                 figure->Px(1.5));
   figure->Text("0", scale_left, scale_top + figure->Px(32), 0.6, 0);
-  figure->Text(FormatNumber(length_m, length_m) + " m", scale_left + length_px,
+  figure->Text(TickLabel(length_m, length_m) + " m", scale_left + length_px,
                scale_top + figure->Px(32), 0.6, 0);
   figure->Text("scale", scale_left + length_px / 2, top + row_height / 2, 0.65,
                0);

@@ -10,6 +10,7 @@
 
 #include "common/util/error.h"
 #include "common/util/file.h"
+#include "common/util/nice_ticks.h"
 
 namespace uw {
 namespace {
@@ -145,13 +146,18 @@ cv::Mat Plot::Render() const {
     cv::putText(image, s, at, cv::FONT_HERSHEY_SIMPLEX, size, black, 1,
                 cv::LINE_AA);
   };
-  for (int t = 0; t <= 4; ++t) {
-    const double x = x_lo + (x_hi - x_lo) * t / 4.0;
-    const double y = y_lo + (y_hi - y_lo) * t / 4.0;
+  // Grid lines and labels at nice values, not at fifths of the padded
+  // range (which read -0.5075, 2.28375).
+  constexpr int kMaxTicks = 6;
+  const Ticks x_ticks = NiceTicks(x_lo, x_hi, kMaxTicks);
+  for (const double x : x_ticks.values) {
     cv::line(image, to_px(x, y_lo), to_px(x, y_hi), grey, 1);
+    text(TickLabel(x, x_ticks.step), to_px(x, y_lo) + cv::Point(-12, 18), 0.4);
+  }
+  const Ticks y_ticks = NiceTicks(y_lo, y_hi, kMaxTicks);
+  for (const double y : y_ticks.values) {
     cv::line(image, to_px(x_lo, y), to_px(x_hi, y), grey, 1);
-    text(fmt::format("{:.6g}", x), to_px(x, y_lo) + cv::Point(-20, 18), 0.4);
-    text(fmt::format("{:.6g}", y), to_px(x_lo, y) + cv::Point(-kLeft + 5, 4),
+    text(TickLabel(y, y_ticks.step), to_px(x_lo, y) + cv::Point(-kLeft + 5, 4),
          0.4);
   }
   cv::rectangle(image, {kLeft, kTop}, {kLeft + plot_w, kTop + plot_h}, black);

@@ -29,6 +29,29 @@ TEST(Plot, DrawsSeriesWhereTheirValuesAre) {
   EXPECT_LT(blue_row, red_row);
 }
 
+// Grid lines at nice values: data from 0 to 10 (padded to -0.5 ... 10.5)
+// get lines at 0, 2, ..., 10, not at fifths of the padded range.
+TEST(Plot, GridLinesAreAtNiceValues) {
+  Plot plot("g", "x", "y", 420, 300);
+  plot.Points({0.0, 10.0}, {0.0, 10.0}, cv::Scalar(0, 0, 255));
+  const cv::Mat image = plot.Render();
+  const cv::Vec3b grey(200, 200, 200);
+  // A row at y = 5, between horizontal grid lines and away from the points.
+  const int row = 50 + (300 - 50 - 60) / 2;
+  std::vector<int> columns;
+  for (int c = 91; c < 420 - 30; ++c) {
+    if (image.at<cv::Vec3b>(row, c) == grey) columns.push_back(c);
+  }
+  // plot width 300 px over 11 units: x = 0, 2, ..., 10 at 90 + (x + 0.5)
+  // * 300 / 11.
+  std::vector<int> expected;
+  for (int x = 0; x <= 10; x += 2) {
+    expected.push_back(90 +
+                       static_cast<int>(std::lround((x + 0.5) * 300.0 / 11.0)));
+  }
+  EXPECT_EQ(columns, expected);
+}
+
 TEST(Plot, HistogramBarsAreAsTallAsTheirCounts) {
   Plot plot("h", "x", "n", 400, 300);
   // Bin 0 holds three values, bin 1 one.
