@@ -60,6 +60,23 @@ TEST_F(NavCsvTest, ImageNameAndDiveColumnsAreOptional) {
   EXPECT_EQ(nav[1].position, Eigen::Vector3d(1, 2, 3));
 }
 
+// A logger's export: every field quoted, CRLF line ends, an image name with
+// a comma and a quote in it, numbers padded inside their quotes.
+TEST_F(NavCsvTest, QuotedExportsAreRead) {
+  const std::vector<NavRecord> nav = Read(
+      "\"image_name\",\"time\",\"x\",\"y\",\"z\",\"roll\",\"pitch\","
+      "\"yaw\",\"std_x\",\"std_y\",\"std_z\",\"std_roll\",\"std_pitch\","
+      "\"std_yaw\"\r\n"
+      "\"dive 3, \"\"left\"\"/0001.png\",\" 12.5 \",\"1\",\"2\",\"3\","
+      "\"0\",\"0\",\"90\",\"0.5\",\"0.5\",\"0.1\",\"1\",\"1\",\"2\"\r\n");
+  ASSERT_EQ(nav.size(), 1u);
+  EXPECT_EQ(nav[0].image_name, "dive 3, \"left\"/0001.png");
+  EXPECT_EQ(nav[0].time_s, 12.5);
+  EXPECT_EQ(nav[0].position, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(nav[0].rpy_rad.z(), 90 * kDegToRad);
+  EXPECT_EQ(nav[0].position_sigma, Eigen::Vector3d(0.5, 0.5, 0.1));
+}
+
 TEST_F(NavCsvTest, BadRowsNameFileAndLine) {
   const std::string good = "a.png,0,1,4,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n";
   const std::string where = path_.string() + ":";

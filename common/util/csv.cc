@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <string_view>
 
 #include "common/util/error.h"
 #include "common/util/file.h"
@@ -235,13 +236,28 @@ const std::string& CsvTable::Text(size_t row, const std::string& column) const {
   return rows_.at(row)[*index];
 }
 
+namespace {
+
+// A number's field without the spaces and tabs a quoted export may pad it
+// with (" 12.5 "): padding outside quotes is already gone, inside it is
+// text, and a name keeps it; a number does not need it.
+std::string_view NumberText(const std::string& field) {
+  const size_t first = field.find_first_not_of(" \t");
+  if (first == std::string::npos) return {};
+  const size_t last = field.find_last_not_of(" \t");
+  return std::string_view(field).substr(first, last - first + 1);
+}
+
+}  // namespace
+
 double CsvTable::Double(size_t row, const std::string& column) const {
   const std::string& field = Text(row, column);
+  const std::string_view text = NumberText(field);
   double value = 0.0;
   const auto [end, error] =
-      std::from_chars(field.data(), field.data() + field.size(), value);
-  if (error != std::errc() || end != field.data() + field.size() ||
-      !std::isfinite(value)) {
+      std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() ||
+      end != text.data() + text.size() || !std::isfinite(value)) {
     throw ErrorAt(Where(row), ": ", column, " must be a finite number, got '",
                   field, "'");
   }
@@ -266,11 +282,12 @@ double CsvTable::NonNegativeDouble(size_t row,
 
 int CsvTable::Int(size_t row, const std::string& column, int min) const {
   const std::string& field = Text(row, column);
+  const std::string_view text = NumberText(field);
   int value = 0;
   const auto [end, error] =
-      std::from_chars(field.data(), field.data() + field.size(), value);
-  if (error != std::errc() || end != field.data() + field.size() ||
-      value < min) {
+      std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() ||
+      end != text.data() + text.size() || value < min) {
     throw ErrorAt(Where(row), ": ", column, " must be an integer >= ", min,
                   ", got '", field, "'");
   }

@@ -49,13 +49,14 @@ class CsvTable {
   // The accessors below throw uw::Error naming the file when the column does
   // not exist, and file:line when the field is not what they expect.
   const std::string& Text(size_t row, const std::string& column) const;
-  // A finite number.
+  // A finite number; spaces and tabs around it (a quoted export's " 12.5 ")
+  // are allowed.
   double Double(size_t row, const std::string& column) const;
   // A finite number, or nullopt when the field is empty.
   std::optional<double> Number(size_t row, const std::string& column) const;
   // A finite number >= 0.
   double NonNegativeDouble(size_t row, const std::string& column) const;
-  // An integer >= min.
+  // An integer >= min, spaces and tabs around it allowed.
   int Int(size_t row, const std::string& column, int min) const;
 
  private:

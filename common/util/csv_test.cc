@@ -97,14 +97,21 @@ TEST_F(CsvTableTest, ReadsQuotedFieldsAsRfc4180) {
       "\"name\",\"a\"\n"
       " \" two, \"\"quoted\"\" \" , 1\n"
       "\"line\nbreak\",2\n"
-      "plain,\"3\"\n");
-  ASSERT_EQ(table.NumRows(), 3u);
+      "plain,\"3\"\n"
+      "padded,\" 4.5\t\"\n"
+      "blank,\"  \"\n");
+  ASSERT_EQ(table.NumRows(), 5u);
   EXPECT_EQ(table.Text(0, "name"), " two, \"quoted\" ");
   EXPECT_EQ(table.Int(0, "a", 0), 1);
   EXPECT_EQ(table.Text(1, "name"), "line\nbreak");
   EXPECT_EQ(table.Line(1), 4);
   EXPECT_EQ(table.Where(2), path_.string() + ":6");
   EXPECT_EQ(table.Double(2, "a"), 3.0);
+  // A number padded inside its quotes is still that number; a name keeps
+  // its padding (above), and padding alone is no number.
+  EXPECT_EQ(table.Double(3, "a"), 4.5);
+  EXPECT_THROW(table.Double(4, "a"), uw::Error);
+  EXPECT_THROW(table.Int(4, "a", 0), uw::Error);
   EXPECT_EQ(Error("name,a\nx,1\n\"open,2\n"),
             path_.string() + ":3: unterminated quoted field");
   EXPECT_EQ(Error("name,a\n\"x\ny\",1,2\n"),
