@@ -53,16 +53,21 @@ mkdir -p "$out/logs" "$out/sparse"
 source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/run_step.sh"
 
 # with_user_flags USER_FLAGS NAME VALUE [NAME VALUE ...] sets the array
-# `flags` to the NAME VALUE defaults that USER_FLAGS does not name, then
-# USER_FLAGS split on spaces.
+# `flags` to the NAME VALUE defaults that USER_FLAGS does not name (as
+# "NAME VALUE" or "NAME=VALUE"), then USER_FLAGS split on spaces.
 with_user_flags() {
   local user=" $1 "
   shift
   flags=()
   while (($# >= 2)); do
-    if [[ "$user" != *" $1 "* ]]; then flags+=("$1" "$2"); fi
+    if [[ "$user" != *" $1 "* && "$user" != *" $1="* ]]; then
+      flags+=("$1" "$2")
+    fi
     shift 2
   done
+  # Split on spaces on purpose, but never glob (a value may hold a *).
+  local -
+  set -f
   # shellcheck disable=SC2206
   flags+=($user)
 }
