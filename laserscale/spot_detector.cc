@@ -166,8 +166,10 @@ std::vector<DetectedSpot> DetectSpots(const cv::Mat& image, const cv::Mat& aux,
       if (spot.stable && roi.aux_mismatch && options.require_texture_removal) {
         spot.stable = false;
         spot.problem = "not used: " + roi.texture_note;
-      } else if (!spot.stable) {
-        spot.problem += " (" + roi.texture_note + ")";
+      } else if (!spot.stable || roi.aux_mismatch) {
+        // Kept with --require_texture_removal 0: the note still goes with it.
+        spot.problem += (spot.problem.empty() ? "" : " ") + std::string("(") +
+                        roi.texture_note + ")";
       }
     }
   }

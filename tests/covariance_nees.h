@@ -65,7 +65,9 @@ struct NeesOptions {
   int points_observed = 4000;
   // Trials, unless UW_NEES_TRIALS says otherwise. 400 decide the 10 % on
   // the skewed means (above). Trial k draws its tracks and noise from seeds
-  // 1000 + k and 2000 + k; UW_NEES_FIRST_TRIAL (default 0) starts k there,
+  // 1000 + k and 2000 + k (so keep k below 1000: trial 1000's tracks would
+  // share trial 0's noise seed); UW_NEES_FIRST_TRIAL (default 0) starts k
+  // there,
   // so that a run of hours can be split over sessions or machines and its
   // parts' "[ trial k ]" lines pooled by scripts/nees_summary.py.
   int num_trials = 400;

@@ -98,8 +98,8 @@ TEST(ModelAlignment, CheckHoldsTheRulesBetweenOptions) {
                         "--associate time: expected name or closest_point");
 }
 
-// Unlike pose_prior_importer, the aligner takes a log with rows of images
-// the model did not register, and says how many.
+// A log with rows of images the model did not register: the aligner leaves
+// them out and says how many.
 TEST(ModelAlignment, NavigationRowsOfOtherImagesAreNoError) {
   const fs::path dir = testing::FreshTestDir("uw_model_alignment_nav");
   ModelAlignmentOptions options;

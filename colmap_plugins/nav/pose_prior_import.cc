@@ -84,7 +84,8 @@ LoadedCameraPriors LoadCameraPriors(
   const auto given = [&](const std::string& name) {
     return camera_of_name.count(name) != 0;
   };
-  // No row of `rows` (image_times.csv's, or nav.csv's) names a given image.
+  // None of the `num_rows` rows of `file` (image_times.csv, or nav.csv)
+  // names a given image.
   const auto none_given = [&](size_t num_rows, const std::string& file) {
     return ErrorAt(file, ": none of its ", num_rows, " rows names an image of ",
                    images_source, " (", images.size(),
@@ -114,18 +115,30 @@ LoadedCameraPriors LoadCameraPriors(
                     ": the navigation has no image names; give the images' "
                     "times (--image_times)");
     }
-    for (const NavRecord& row : nav) {
-      if (!given(row.image_name)) loaded.other_images.push_back(row.image_name);
-    }
-    if (loaded.other_images.size() == nav.size()) {
-      throw none_given(nav.size(), sources.nav);
-    }
     if (has_rig) {
       // The log samples the reference camera; the others fire with the
-      // rig's delays after it.
+      // rig's delays after it. A row places the given images of its
+      // station, its own image registered or not; a row that places none
+      // is left out.
       image_times = RigImageTimes(nav, rig, image_names);
       sources.image_times = sources.nav;
       times = &image_times;
+      std::set<int> used_lines;
+      for (const ImageTime& time : image_times) used_lines.insert(time.line);
+      for (const NavRecord& row : nav) {
+        if (used_lines.count(row.line) == 0) {
+          loaded.other_images.push_back(row.image_name);
+        }
+      }
+    } else {
+      for (const NavRecord& row : nav) {
+        if (!given(row.image_name)) {
+          loaded.other_images.push_back(row.image_name);
+        }
+      }
+    }
+    if (loaded.other_images.size() == nav.size()) {
+      throw none_given(nav.size(), sources.nav);
     }
   }
   if (has_rig && times != nullptr) {

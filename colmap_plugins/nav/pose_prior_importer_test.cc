@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/nav/camera_prior.h"
+#include "colmap_plugins/nav/pose_prior_import.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/file.h"
 #include "common/util/subprocess.h"
@@ -297,6 +298,37 @@ TEST(PosePriorImporter, RigDelaysStandInForImageTimes) {
   }
 }
 
+// With a rig and no image times, a row places the given images of its
+// station even when its own (the reference camera's) image is not given,
+// as when the mapper dropped it; it is left out only when it places none.
+TEST(PosePriorImporter, ARigRowPlacesItsStationWithoutItsOwnImage) {
+  const Survey& survey = TheSurvey();
+  PosePriorImportOptions options;
+  options.nav_path = survey.sim / "nav.csv";
+  options.rig_config_path = survey.sim / "rig.json";
+  const auto images_without = [](const std::set<std::string>& dropped) {
+    std::vector<std::pair<std::string, camera_t>> images;
+    for (camera_t camera = 1; camera <= 3; ++camera) {
+      for (int k = 0; k < 8; ++k) {
+        const std::string name = "cam" + std::to_string(camera) + "/0000" +
+                                 std::to_string(k) + ".png";
+        if (dropped.count(name) == 0) images.emplace_back(name, camera);
+      }
+    }
+    return images;
+  };
+  const LoadedCameraPriors one = LoadCameraPriors(
+      options, images_without({"cam1/00003.png"}), "the test's images");
+  EXPECT_EQ(one.priors.size(), 23u);
+  EXPECT_TRUE(one.other_images.empty());
+  const LoadedCameraPriors station = LoadCameraPriors(
+      options,
+      images_without({"cam1/00003.png", "cam2/00003.png", "cam3/00003.png"}),
+      "the test's images");
+  EXPECT_EQ(station.priors.size(), 21u);
+  EXPECT_EQ(station.other_images, std::vector<std::string>{"cam1/00003.png"});
+}
+
 // A log by image name without a rig: the reference camera's images get
 // their rows; the others keep no prior.
 TEST(PosePriorImporter, ByNameOnlyTheLoggedImagesGetPriors) {
@@ -428,8 +460,8 @@ TEST(PosePriorImporter, BadInputIsRefusedAndTheDatabaseIsUntouched) {
 
   // A row naming an image that never reached the database (removed before
   // feature extraction): left out, counted, and the others imported.
-  const auto stray =
-      Import(database, "--nav" + write("stray.csv", nav_text + stray_row + "\n"));
+  const auto stray = Import(
+      database, "--nav" + write("stray.csv", nav_text + stray_row + "\n"));
   EXPECT_EQ(stray.exit_code, 0) << stray.output;
   EXPECT_NE(stray.output.find("Rows naming no image of the database, left "
                               "out: 1 (e.g. cam1/09999.png)"),

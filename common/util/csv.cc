@@ -22,9 +22,10 @@ namespace {
 
 bool IsBlank(char c) { return c == ' ' || c == '\t'; }
 
-std::string Trim(const std::string& text) {
+// `text` without the spaces and tabs around it.
+std::string_view Trim(std::string_view text) {
   const size_t first = text.find_first_not_of(" \t");
-  if (first == std::string::npos) return "";
+  if (first == std::string_view::npos) return {};
   return text.substr(first, text.find_last_not_of(" \t") - first + 1);
 }
 
@@ -236,23 +237,11 @@ const std::string& CsvTable::Text(size_t row, const std::string& column) const {
   return rows_.at(row)[*index];
 }
 
-namespace {
-
-// A number's field without the spaces and tabs a quoted export may pad it
-// with (" 12.5 "): padding outside quotes is already gone, inside it is
-// text, and a name keeps it; a number does not need it.
-std::string_view NumberText(const std::string& field) {
-  const size_t first = field.find_first_not_of(" \t");
-  if (first == std::string::npos) return {};
-  const size_t last = field.find_last_not_of(" \t");
-  return std::string_view(field).substr(first, last - first + 1);
-}
-
-}  // namespace
-
 double CsvTable::Double(size_t row, const std::string& column) const {
   const std::string& field = Text(row, column);
-  const std::string_view text = NumberText(field);
+  // Without the padding a quoted export may give a number (" 12.5 "): a
+  // name keeps its padding (it is text), a number does not need it.
+  const std::string_view text = Trim(field);
   double value = 0.0;
   const auto [end, error] =
       std::from_chars(text.data(), text.data() + text.size(), value);
@@ -266,7 +255,7 @@ double CsvTable::Double(size_t row, const std::string& column) const {
 
 std::optional<double> CsvTable::Number(size_t row,
                                        const std::string& column) const {
-  if (Text(row, column).empty()) return std::nullopt;
+  if (Trim(Text(row, column)).empty()) return std::nullopt;
   return Double(row, column);
 }
 
@@ -282,7 +271,7 @@ double CsvTable::NonNegativeDouble(size_t row,
 
 int CsvTable::Int(size_t row, const std::string& column, int min) const {
   const std::string& field = Text(row, column);
-  const std::string_view text = NumberText(field);
+  const std::string_view text = Trim(field);
   int value = 0;
   const auto [end, error] =
       std::from_chars(text.data(), text.data() + text.size(), value);

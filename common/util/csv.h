@@ -52,7 +52,7 @@ class CsvTable {
   // A finite number; spaces and tabs around it (a quoted export's " 12.5 ")
   // are allowed.
   double Double(size_t row, const std::string& column) const;
-  // A finite number, or nullopt when the field is empty.
+  // A finite number, or nullopt when the field is empty or blank.
   std::optional<double> Number(size_t row, const std::string& column) const;
   // A finite number >= 0.
   double NonNegativeDouble(size_t row, const std::string& column) const;

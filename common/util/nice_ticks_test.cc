@@ -44,6 +44,10 @@ TEST(NiceTicks, AreMultiplesOfOneTwoOrFiveTimesAPowerOfTen) {
     EXPECT_GE(t.values.front(), lo - 1e-9 * t.step);
     EXPECT_LE(t.values.back(), hi + 1e-9 * t.step);
   }
+  // A span of a few ulps has its ends as ticks (it used to loop forever),
+  // and so has one a double cannot hold.
+  EXPECT_EQ(NiceTicks(0.3, 0.1 + 0.2 + 1e-16, 6).values.size(), 2u);
+  EXPECT_EQ(NiceTicks(-1e308, 1e308, 6).values.size(), 2u);
   EXPECT_EQ(TickLabel(-1e-17, 0.1), "0.0");
   EXPECT_EQ(TickLabel(1000000.0, 1.0), "1000000");
   EXPECT_THROW(NiceTicks(1.0, 1.0, 5), Error);

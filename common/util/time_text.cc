@@ -11,6 +11,7 @@ namespace uw {
 
 std::string SecondsText(double seconds) {
   if (!std::isfinite(seconds)) return fmt::format("{}", seconds);
+  if (seconds == 0.0) return "0";  // and never "-0"
   // fmt's shortest round trip picks exponent notation when it is shorter;
   // then the same digits are printed positionally, with as many decimals as
   // the mantissa has beyond the exponent.

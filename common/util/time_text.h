@@ -8,9 +8,10 @@
 
 namespace uw {
 
-// The shortest text that reads back to the same double, in positional
-// notation: 1728410000.25, 1700000000, 0.00001234, -3.5. Non-finite values
-// as "nan", "inf", "-inf".
+// Text that reads back to the same double, in positional notation, with
+// the shortest round trip's digits where it has a fraction: 1728410000.25,
+// 1700000000, 0.00001234, -3.5. (Past 1e16 the integer part is the
+// double's exact value.) Non-finite values as "nan", "inf", "-inf".
 std::string SecondsText(double seconds);
 
 // SecondsText, and for a time from 1973 to 2100 read as Unix time (s since

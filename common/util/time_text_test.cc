@@ -12,6 +12,7 @@ TEST(SecondsText, KeepsEveryDigitPositionally) {
   EXPECT_EQ(SecondsText(1700000000.0), "1700000000");
   EXPECT_EQ(SecondsText(1728410000.123456), "1728410000.123456");
   EXPECT_EQ(SecondsText(0.0), "0");
+  EXPECT_EQ(SecondsText(-0.0), "0");
   EXPECT_EQ(SecondsText(-3.5), "-3.5");
   EXPECT_EQ(SecondsText(0.1), "0.1");
   EXPECT_EQ(SecondsText(0.00001234), "0.00001234");
@@ -22,16 +23,14 @@ TEST(SecondsText, KeepsEveryDigitPositionally) {
 }
 
 TEST(SecondsText, ReadsBackToTheSameDouble) {
-  for (const double value :
-       {1728410000.25, 1728410000.1, 0.3, 1.0 / 3.0, 123456.789e3, 2.5e-9,
-        -98765.4321, 1e15 + 0.5}) {
+  for (const double value : {1728410000.25, 1728410000.1, 0.3, 1.0 / 3.0,
+                             123456.789e3, 2.5e-9, -98765.4321, 1e15 + 0.5}) {
     EXPECT_EQ(std::stod(SecondsText(value)), value) << SecondsText(value);
   }
 }
 
 TEST(TimeText, GivesTheCalendarTimeOfAUnixTime) {
-  EXPECT_EQ(TimeText(1728410000.25),
-            "1728410000.25 (2024-10-08T17:53:20.25Z)");
+  EXPECT_EQ(TimeText(1728410000.25), "1728410000.25 (2024-10-08T17:53:20.25Z)");
   EXPECT_EQ(TimeText(951782400.0),
             "951782400 (2000-02-29T00:00:00Z)");  // a leap day
   EXPECT_EQ(TimeText(1e8), "100000000 (1973-03-03T09:46:40Z)");
