@@ -19,7 +19,8 @@
 # Flags of your own for each colmap step (environment, split on spaces as
 # NAV_FLAGS is): EXTRACTOR_FLAGS (feature_extractor), MATCHER_FLAGS (the
 # matcher), MAPPER_FLAGS (mapper). A flag given there replaces the script's
-# default of the same name (colmap refuses a flag given twice). For 27 MP
+# default of the same name (colmap refuses a flag given twice); the camera
+# model and its parameters are the arguments above. For 27 MP
 # frames, say:
 #   EXTRACTOR_FLAGS="--SiftExtraction.max_image_size 2400 --SiftExtraction.max_num_features 8000" \
 #     bash scripts/colmap_sparse.sh images out OPENCV
@@ -56,20 +57,25 @@ source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/run_step.sh"
 # `flags` to the NAME VALUE defaults that USER_FLAGS does not name (as
 # "NAME VALUE" or "NAME=VALUE"), then USER_FLAGS split on spaces.
 with_user_flags() {
-  local user=" $1 "
-  shift
-  flags=()
-  while (($# >= 2)); do
-    if [[ "$user" != *" $1 "* && "$user" != *" $1="* ]]; then
-      flags+=("$1" "$2")
-    fi
-    shift 2
-  done
-  # Split on spaces on purpose, but never glob (a value may hold a *).
+  # Split on blanks and line breaks on purpose, but never glob (a value may
+  # hold a *).
   local -
   set -f
+  local user
   # shellcheck disable=SC2206
-  flags+=($user)
+  user=($1)
+  shift
+  flags=()
+  local word named
+  while (($# >= 2)); do
+    named=0
+    for word in "${user[@]}"; do
+      if [[ "$word" == "$1" || "$word" == "$1="* ]]; then named=1; fi
+    done
+    if ((!named)); then flags+=("$1" "$2"); fi
+    shift 2
+  done
+  flags+=("${user[@]}")
 }
 
 camera=(--ImageReader.camera_model "$model")

@@ -35,10 +35,13 @@ TEST(ColmapSparse, UserFlagsReachTheirStepsAndReplaceTheDefaults) {
   const fs::path out = dir / "out";
   // The script's default is 2000 features (about 2500 keypoints on these
   // images, some features taking two orientations); colmap refuses a flag
-  // given twice. 300 features give at most 600 keypoints.
+  // given twice. 300 features give at most 600 keypoints. The matcher's
+  // flags come as NAME=VALUE and tab-separated, and one of them is a
+  // default of the script's (use_gpu), which colmap would refuse twice.
   const auto result = RunProcess(
       "EXTRACTOR_FLAGS='--SiftExtraction.max_num_features 300' "
-      "MATCHER_FLAGS='--SiftMatching.max_ratio 0.75' "
+      "MATCHER_FLAGS='--SiftMatching.use_gpu=0\t--SiftMatching.max_ratio "
+      "0.75' "
       "MAPPER_FLAGS='--Mapper.ba_global_max_num_iterations 20' bash " +
           Quoted(kScript) + " " + Quoted(images) + " " + Quoted(out),
       true);
