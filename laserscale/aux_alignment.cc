@@ -96,18 +96,13 @@ void FlattenHighlights(cv::Mat* patch) {
 }
 
 double SameSceneNcc(const cv::Mat& patch) {
-  const cv::Mat kernel =
-      (cv::Mat_<float>(3, 3) << 1, -2, 1, -2, 4, -2, 1, -2, 1);
-  cv::Mat response;
-  cv::filter2D(patch, response, CV_32F, kernel, cv::Point(-1, -1), 0,
-               cv::BORDER_REPLICATE);
-  std::vector<float> values(response.begin<float>(), response.end<float>());
-  for (float& value : values) value = std::abs(value);
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  // The kernel's weights square-sum to 36: noise of sigma n gives 6 n.
-  const double noise_variance = Square(kMadToSigma * *middle / 6.0);
+  std::vector<float> values;
+  AppendSecondDifferences(patch, &values);
+  // Exact zeros are the flattened highlights' constant pixels
+  // (FlattenHighlights), not noise: they would pull the noise down and the
+  // NCC expected of the same scene up.
+  values.erase(std::remove(values.begin(), values.end(), 0.0f), values.end());
+  const double noise_variance = Square(SecondDifferenceSigma(&values));
   cv::Scalar mean;
   cv::Scalar deviation;
   cv::meanStdDev(patch, mean, deviation);

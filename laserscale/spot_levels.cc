@@ -58,6 +58,25 @@ cv::Mat LowPass(const cv::Mat& image, double sigma) {
   return out;
 }
 
+void AppendSecondDifferences(const cv::Mat& patch, std::vector<float>* values) {
+  const cv::Mat kernel =
+      (cv::Mat_<float>(3, 3) << 1, -2, 1, -2, 4, -2, 1, -2, 1);
+  cv::Mat response;
+  cv::filter2D(patch, response, CV_32F, kernel, cv::Point(-1, -1), 0,
+               cv::BORDER_REPLICATE);
+  const cv::Mat flat = response.reshape(1, 1);
+  for (int i = 0; i < flat.cols; ++i) {
+    values->push_back(std::abs(flat.at<float>(0, i)));
+  }
+}
+
+double SecondDifferenceSigma(std::vector<float>* values) {
+  if (values->empty()) return 0.0;
+  const auto middle = values->begin() + values->size() / 2;
+  std::nth_element(values->begin(), middle, values->end());
+  return kMadToSigma * *middle / 6.0;
+}
+
 cv::Mat ValueImage(const cv::Mat& image) {
   std::vector<cv::Mat> channels;
   cv::split(image, channels);

@@ -4,6 +4,8 @@
 // channel clips.
 #pragma once
 
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 #include "laserscale/spot_detector_options.h"
@@ -35,6 +37,16 @@ cv::Mat LowPass(const cv::Mat& image, double sigma);
 // The σ of white noise after LowPass, per unit σ before: the L2 norm of the
 // (separable) kernel.
 double LowPassNoiseGain(const SpotDetectorOptions& options);
+
+// The absolute responses of `patch` (CV_32F, any channels) to the 3x3
+// second difference [1 -2 1; -2 4 -2; 1 -2 1], appended to `values`: white
+// noise of σ gives responses of σ 6 (the weights square-sum to 36), and
+// smooth texture almost none.
+void AppendSecondDifferences(const cv::Mat& patch, std::vector<float>* values);
+
+// The noise σ from those responses, their MAD / 6 (robust to the few large
+// ones of texture edges); 0 for none. Reorders `values`.
+double SecondDifferenceSigma(std::vector<float>* values);
 
 // V (the largest channel) of a CV_32FC3 image.
 cv::Mat ValueImage(const cv::Mat& image);

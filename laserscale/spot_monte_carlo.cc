@@ -76,23 +76,11 @@ uint64_t IterationKey(uint64_t seed, size_t laser, int iteration) {
 }
 
 double NoiseFromImage(const std::vector<Roi>& rois) {
-  const cv::Mat kernel =
-      (cv::Mat_<float>(3, 3) << 1, -2, 1, -2, 4, -2, 1, -2, 1);
   std::vector<float> values;
   for (const Roi& roi : rois) {
-    if (!roi.problem.empty()) continue;
-    cv::Mat response;
-    cv::filter2D(roi.main, response, CV_32F, kernel, cv::Point(-1, -1), 0,
-                 cv::BORDER_REPLICATE);
-    const cv::Mat flat = response.reshape(1, 1);
-    for (int i = 0; i < flat.cols; ++i) {
-      values.push_back(std::abs(flat.at<float>(0, i)));
-    }
+    if (roi.problem.empty()) AppendSecondDifferences(roi.main, &values);
   }
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return kMadToSigma * *middle / 6.0;
+  return SecondDifferenceSigma(&values);
 }
 
 double NoiseFromDifference(const std::vector<Roi>& rois,
