@@ -3,8 +3,10 @@
 // colmap_scene), with the scene's true camera centres as references.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <regex>
 
@@ -185,6 +187,25 @@ TEST(ModelAligner, RobustAlignmentSetsAWrongReferenceAside) {
   EXPECT_LT(max_difference, 2e-3);
 }
 
+// The references rewritten by `rewrite` (name, x, y, z of each line) into
+// `path`.
+void RewriteReferences(
+    const fs::path& path,
+    const std::function<void(std::string*, Eigen::Vector3d*)>& rewrite) {
+  std::ifstream in(kRefImages);
+  std::vector<std::pair<std::string, Eigen::Vector3d>> references;
+  std::string name;
+  double x, y, z;
+  while (in >> name >> x >> y >> z) references.push_back({name, {x, y, z}});
+  std::ofstream out(path);
+  out.precision(17);
+  for (auto& [name, position] : references) {
+    rewrite(&name, &position);
+    out << name << " " << position.x() << " " << position.y() << " "
+        << position.z() << "\n";
+  }
+}
+
 void ExpectFailsWritingNothing(const std::string& flags, const fs::path& output,
                                const std::string& message) {
   const auto result = Uwcolmap(flags);
@@ -246,6 +267,68 @@ TEST(ModelAligner, BadReferencesGiveClearErrorsAndWriteNothing) {
   EXPECT_EQ(same.exit_code, 1);
   EXPECT_NE(same.output.find("is the input folder"), std::string::npos)
       << same.output;
+}
+
+// Issue 17: gross mistakes used to align with exit 0 and normal-looking
+// output.
+TEST(ModelAligner, GrossMistakesAreRefusedUnlessAccepted) {
+  const fs::path dir = FreshTestDir("uw_model_aligner_test");
+  const fs::path output = dir / "aligned";
+  const std::string json = " --transform_path " + Quoted(dir / "sim3.json");
+  // The references as longitude and latitude in degrees (at 43.1 N) with
+  // the height in metres, read as metres: a fine fit at scale ~1e-5.
+  RewriteReferences(dir / "degrees.txt", [](std::string*, Eigen::Vector3d* p) {
+    constexpr double kMetresPerDegree = 111320.0;
+    *p = Eigen::Vector3d(
+        5.4 + p->x() / (kMetresPerDegree * std::cos(43.1 * M_PI / 180.0)),
+        43.1 + p->y() / kMetresPerDegree, p->z());
+  });
+  const std::string degrees = " --ref_images_path " +
+                              Quoted(dir / "degrees.txt") +
+                              " --robust_alignment 0" + json;
+  ExpectFailsWritingNothing(InOut(kSparseDir, output) + degrees, output,
+                            "Are the positions latitude/longitude in degrees, "
+                            "or another unit, read as metres?");
+  EXPECT_FALSE(fs::exists(dir / "sim3.json"));
+  const auto accepted = Uwcolmap(InOut(kSparseDir, dir / "accepted") + degrees +
+                                 " --accept_implausible 1");
+  ASSERT_EQ(accepted.exit_code, 0) << accepted.output;
+  EXPECT_NE(accepted.output.find("(accepted: --accept_implausible 1)"),
+            std::string::npos)
+      << accepted.output;
+  EXPECT_FALSE(
+      nlohmann::json::parse(ReadFileToString(dir / "sim3.json"))["warnings"]
+          .empty());
+
+  // Each image paired with the position of another, image k with image
+  // 5k + 3 (mod 12), as a log of another time puts unrelated positions
+  // beside the images: the navigation does not follow the model.
+  std::vector<std::string> names;
+  RewriteReferences(
+      dir / "unused.txt",
+      [&](std::string* name, Eigen::Vector3d*) { names.push_back(*name); });
+  size_t k = 0;
+  RewriteReferences(dir / "shifted.txt",
+                    [&](std::string* name, Eigen::Vector3d*) {
+                      *name = names[(5 * k++ + 3) % names.size()];
+                    });
+  ExpectFailsWritingNothing(InOut(kSparseDir, output) + " --ref_images_path " +
+                                Quoted(dir / "shifted.txt") +
+                                " --robust_alignment 0" + json,
+                            output,
+                            "the navigation does not follow these images. Are "
+                            "they paired with the navigation of another time "
+                            "(a camera clock offset: --time_offset)");
+  // The true references pass, and the printout says what was judged.
+  const auto clean = Uwcolmap(InOut(kSparseDir, output) +
+                              " --ref_images_path " + Quoted(kRefImages));
+  ASSERT_EQ(clean.exit_code, 0) << clean.output;
+  EXPECT_EQ(clean.output.find("WARNING"), std::string::npos) << clean.output;
+  EXPECT_TRUE(std::regex_search(
+      clean.output, std::regex("Plausibility: cameras [0-9.]+ m from what they "
+                               "see \\(median of [0-9]+ depths\\); the "
+                               "similarity explains (9[0-9.]+|100.0) %")))
+      << clean.output;
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdio>
+#include <fstream>
 #include <map>
 
 #include <nlohmann/json.hpp>
@@ -235,6 +236,47 @@ TEST(ModelAlignerOnUwsim, DatabasePriorsMatchNavigation) {
     }
   }
   EXPECT_LT(max_difference, 1e-9);
+}
+
+// A camera clock 58 days and 3 hours off the navigation's: by name and by
+// closest point, one error names the offset that fixes it, and nothing is
+// written. (By closest point the times only start the association: the
+// closest points used to carry a clock days off to exit 0.)
+TEST(ModelAlignerOnUwsim, ACameraClockDaysOffIsRefusedWithItsOffset) {
+  const fs::path dir = FreshTestDir("uw_model_comparer_test");
+  {
+    std::ifstream in(kSimDir / "image_times.csv");
+    std::ofstream out(dir / "image_times.csv");
+    out.precision(17);
+    for (std::string line; std::getline(in, line);) {
+      const size_t comma = line.find(',');
+      if (line.empty() || line[0] == '#' || line.rfind("image_name", 0) == 0) {
+        out << line << "\n";
+      } else {
+        out << line.substr(0, comma) << ","
+            << std::stod(line.substr(comma + 1)) - 5022000.0 << "\n";
+      }
+    }
+  }
+  const std::string nav = " --nav " + Quoted(kSimDir / "nav.csv") +
+                          " --image_times " + Quoted(dir / "image_times.csv") +
+                          testing::SurveyMountFlags(kSimDir);
+  for (const std::string associate : {"name", "closest_point"}) {
+    const fs::path output = dir / associate;
+    const auto result = Align(output, nav + " --associate " + associate);
+    EXPECT_EQ(result.exit_code, 1) << associate << "\n" << result.output;
+    EXPECT_NE(result.output.find("Is the camera clock off by about 58 d 3 h"),
+              std::string::npos)
+        << associate << "\n"
+        << result.output;
+    EXPECT_NE(result.output.find("--time_offset 5022000 puts the median"),
+              std::string::npos)
+        << result.output;
+    EXPECT_FALSE(fs::exists(output));
+  }
+  // With that offset, the same times align.
+  const auto fixed = Align(dir / "fixed", nav + " --time_offset 5022000");
+  EXPECT_EQ(fixed.exit_code, 0) << fixed.output;
 }
 
 }  // namespace

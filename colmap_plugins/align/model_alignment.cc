@@ -43,6 +43,7 @@ void ModelAlignmentOptions::Check() const {
                   ": a similarity needs at least 3");
   }
   similarity.Check();
+  plausibility.Check();
 }
 
 NavigationReferenceSet NavigationReferences(
@@ -59,6 +60,7 @@ NavigationReferenceSet NavigationReferences(
         {prior.image_name, prior.position, prior.position_covariance});
   }
   set.other_images = loaded.other_images;
+  set.warnings = loaded.warnings;
   return set;
 }
 
@@ -120,7 +122,14 @@ ModelAlignment AlignByClosestPoints(const Reconstruction& model,
   std::vector<std::pair<double, const Image*>> ordered;
   std::map<std::string, double> times;
   if (!nav.image_times_path.empty()) {
-    for (const ImageTime& time : ReadImageTimesCsv(nav.image_times_path)) {
+    const std::vector<ImageTime> image_times =
+        ReadImageTimesCsv(nav.image_times_path);
+    // Times only start the association; days off, they would start it at
+    // one end of the path and the closest points would do the rest.
+    CheckImageClock(ReadNavigationCsv(nav.nav_path), image_times,
+                    nav.nav_to_camera,
+                    {nav.nav_path.string(), nav.image_times_path.string()});
+    for (const ImageTime& time : image_times) {
       times[time.image_name] = time.time_s + nav.nav_to_camera.time_offset_s;
     }
   }
@@ -167,6 +176,7 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
                           const Reconstruction& model) {
   options.Check();
   ModelAlignment alignment;
+  std::vector<std::string> log_warnings;
   if (options.associate == ReferenceAssociation::kClosestPoint) {
     alignment = AlignByClosestPoints(model, options.nav, options.similarity);
   } else if (!options.ref_images_path.empty()) {
@@ -182,6 +192,7 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
   } else {
     const NavigationReferenceSet navigation =
         NavigationReferences(options.nav, model);
+    log_warnings = navigation.warnings;
     alignment = AlignByName(model, navigation.references,
                             options.nav.nav_path.string(), options.similarity);
     alignment.num_references += navigation.other_images.size();
@@ -193,6 +204,15 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
                   " images of the model have a reference; "
                   "--min_common_images is ",
                   options.min_common_images);
+  }
+  alignment.plausibility = CheckAlignmentPlausibility(
+      model, alignment.similarity, alignment.reference_positions,
+      alignment.reference, options.plausibility);
+  alignment.warnings = log_warnings;
+  for (const std::string& warning :
+       PlausibilityWarnings(alignment.plausibility, options.plausibility,
+                            "--accept_implausible")) {
+    alignment.warnings.push_back(warning);
   }
   std::map<std::string, Eigen::Vector3d> centre_of;
   for (const Image& image : model.Images()) {
@@ -206,7 +226,7 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
     alignment.warnings.push_back(
         "the aligned " + *line +
         ". bundle_adjuster --nav ... --Nav.use_attitude 1 fixes it with the "
-        "log's roll and pitch");
+        "log's roll and pitch, when it has them");
   }
   return alignment;
 }
@@ -243,6 +263,7 @@ nlohmann::json ModelAlignmentJson(const ModelAlignment& alignment) {
       {"num_images", alignment.image_names.size()},
       {"num_inliers", similarity.num_inliers},
       {"rms_m", similarity.rms_m},
+      {"plausibility", PlausibilityJson(alignment.plausibility)},
       {"warnings", alignment.warnings},
       {"images", images}};
   if (alignment.association == ReferenceAssociation::kClosestPoint) {
@@ -306,6 +327,7 @@ std::string FormatModelAlignment(const ModelAlignment& alignment) {
       fmt::format("Residual RMS (inliers): {:.6g} m; largest {:.6g} m ({})\n",
                   similarity.rms_m, similarity.residuals[worst].norm(),
                   alignment.image_names[worst]);
+  text += PlausibilityText(alignment.plausibility);
   for (size_t k = 0; k < similarity.inliers.size(); ++k) {
     if (!similarity.inliers[k]) {
       text +=

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "colmap_plugins/align/alignment_plausibility.h"
 #include "colmap_plugins/align/path_association.h"
 #include "colmap_plugins/align/reference_positions.h"
 #include "colmap_plugins/align/similarity.h"
@@ -38,6 +39,9 @@ struct ModelAlignmentOptions {
   // Robust (RANSAC + Huber) with an automatic threshold, with scale.
   SimilarityOptions similarity;
   int min_common_images = 3;  // images with a reference, at least
+  // What the similarity must look like (--min_range, --max_range,
+  // --accept_implausible).
+  AlignmentPlausibilityOptions plausibility;
 
   // One source, closest points on the navigation only, at least 3 common
   // images, the similarity's own rules.
@@ -57,6 +61,7 @@ struct ModelAlignment {
   SimilarityResult similarity;             // reference_from_model
   int iterations = 0;                      // closest_point only
   bool converged = true;
+  AlignmentPlausibility plausibility;
   // What the user must know about the result (centres on one line).
   std::vector<std::string> warnings;
 };
@@ -68,6 +73,7 @@ struct ModelAlignment {
 struct NavigationReferenceSet {
   std::vector<ReferencePosition> references;
   std::vector<std::string> other_images;
+  std::vector<std::string> warnings;  // LoadedCameraPriors::warnings
 };
 NavigationReferenceSet NavigationReferences(
     const PosePriorImportOptions& options, const Reconstruction& model);
@@ -92,7 +98,8 @@ ModelAlignment AlignByClosestPoints(const Reconstruction& model,
 
 // Reads the references `options` name and aligns `model` to them (the
 // model is not moved: apply result.similarity.b_from_a). Throws uw::Error
-// for fewer than options.min_common_images images with a reference.
+// for fewer than options.min_common_images images with a reference, and
+// for an implausible alignment (alignment_plausibility.h) unless accepted.
 ModelAlignment AlignModel(const ModelAlignmentOptions& options,
                           const Reconstruction& model);
 

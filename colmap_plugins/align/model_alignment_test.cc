@@ -149,8 +149,14 @@ TEST(ModelAlignment, NavigationRowsOfOtherImagesAreNoError) {
   EXPECT_EQ(json["num_images"], 5);
   EXPECT_EQ(json["images"].size(), 5u);
   EXPECT_FALSE(json.contains("iterations"));
-  EXPECT_TRUE(alignment.warnings.empty());
-  EXPECT_TRUE(json["warnings"].empty());
+  // The references are exact and stated at 10 cm: the only warning says so.
+  ASSERT_EQ(alignment.warnings.size(), 1u);
+  EXPECT_NE(alignment.warnings[0].find("the sigmas are stated far too large"),
+            std::string::npos);
+  EXPECT_EQ(json["warnings"].size(), 1u);
+  EXPECT_NEAR(json["plausibility"]["explained"].get<double>(), 1.0, 1e-12);
+  // FiveImages has no points: no range to judge.
+  EXPECT_TRUE(json["plausibility"]["median_range_m"].is_null());
 }
 
 // A single survey pass: 21 centres 4 cm RMS off a 10 m line. Only that

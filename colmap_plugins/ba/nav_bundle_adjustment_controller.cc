@@ -14,6 +14,9 @@
 namespace uw {
 namespace {
 
+// The flag of NavInputOptions::plausibility.accept_implausible.
+constexpr char kAcceptFlag[] = "--Nav.accept_implausible";
+
 void Emit(const ProgressLines& progress, const std::string& line) {
   if (progress) progress(line);
 }
@@ -153,6 +156,17 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
   options.Check();
   const NavInputs inputs =
       LoadNavInputs(options.priors, *model, options.input_path);
+  const bool has_rotations =
+      std::any_of(inputs.priors.begin(), inputs.priors.end(),
+                  [](const ImagePosePrior& prior) {
+                    return prior.cam_from_world_rotation.has_value();
+                  });
+  if (options.adjuster.use_attitude && !inputs.priors.empty() &&
+      !has_rotations) {
+    throw ErrorAt("--Nav.use_attitude 1: ", options.priors.PriorsName(),
+                  " gives no camera rotations (a log needs roll, pitch and "
+                  "yaw or heading columns, with their sigmas)");
+  }
   Emit(progress,
        fmt::format("Model: {}, {} images, {} points", options.input_path,
                    model->Images().size(), model->Points3D().size()));
@@ -173,11 +187,14 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
   const SoftRig* rig = inputs.rig ? &*inputs.rig : nullptr;
   NavBundleAdjustmentResult result;
   result.num_priors = inputs.priors.size();
+  std::vector<std::string> alignment_warnings = inputs.warnings;
   const auto start = std::chrono::steady_clock::now();
   if (options.strategy == NavStrategy::kPrior && !inputs.priors.empty()) {
     // A model from SfM has its own frame and scale; the adjustment only
     // refines locally.
-    AlignToPriors(inputs.priors, model);
+    AlignToPriorsPlausibly(inputs.priors, options.priors.plausibility,
+                           options.priors.PriorsName(), kAcceptFlag, model,
+                           &alignment_warnings);
     NavBundleAdjustmentOptions adjuster = options.adjuster;
     const NavWeightSelection selection = options.weight.selection;
     if (selection == NavWeightSelection::kFixed) {
@@ -219,9 +236,16 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
     result.report = AdjustWithNavigation(options.adjuster, {}, rig,
                                          inputs.image_times, model);
     if (!inputs.priors.empty()) {
-      result.world_from_adjusted_model = AlignToPriors(inputs.priors, model);
+      result.world_from_adjusted_model =
+          AlignToPriorsPlausibly(inputs.priors, options.priors.plausibility,
+                                 options.priors.PriorsName(), kAcceptFlag,
+                                 model, &alignment_warnings)
+              .b_from_a;
     }
   }
+  result.report.warnings.insert(result.report.warnings.end(),
+                                alignment_warnings.begin(),
+                                alignment_warnings.end());
   const bool attitude_priors =
       options.strategy == NavStrategy::kPrior && options.adjuster.use_attitude;
   if (const auto warning =
@@ -316,8 +340,11 @@ NavLCurveResult SweepModelLCurve(const NavLCurveOptions& options,
         "with priors)");
   }
   Reconstruction aligned = model;
-  AlignToPriors(inputs.priors, &aligned);
   NavLCurveResult result;
+  result.warnings = inputs.warnings;
+  AlignToPriorsPlausibly(inputs.priors, options.priors.plausibility,
+                         options.priors.PriorsName(), kAcceptFlag, &aligned,
+                         &result.warnings);
   result.noise_levels = EstimateAndReportNoiseLevels(
       options.adjuster, inputs.priors, aligned, progress);
   result.curve = SweepAroundEstimate(

@@ -126,6 +126,8 @@ struct NavLCurveOptions {
 struct NavLCurveResult {
   NoiseLevels noise_levels;
   LCurve curve;
+  // What the alignment onto the priors found suspect (or accepted).
+  std::vector<std::string> warnings;
 };
 
 // Loads the priors of `model` (a copy is aligned to them and swept; the

@@ -1,5 +1,7 @@
 #include "colmap_plugins/ba/nav_bundle_adjustment_controller.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -53,9 +55,10 @@ NavInputs InputsOf(const test::TestScene& scene) {
 }
 
 // nav.csv of the scene's priors (a down-looking camera at the vehicle's
-// reference point), plus `extra_rows`.
+// reference point, `position_sigma` per axis), plus `extra_rows`.
 fs::path WriteNav(const test::TestScene& scene, const fs::path& dir,
-                  const std::string& extra_rows = "") {
+                  const std::string& extra_rows = "",
+                  double position_sigma = 0.3) {
   const fs::path path = dir / "nav.csv";
   std::ofstream out(path);
   out << "image_name,time,dive,x,y,z,roll,pitch,yaw,std_x,std_y,std_z,"
@@ -63,10 +66,9 @@ fs::path WriteNav(const test::TestScene& scene, const fs::path& dir,
   for (const ImagePosePrior& prior : scene.priors) {
     const Eigen::Vector3d& p = prior.position_in_world;
     out << fmt::format(
-        "{},{},1,{:.17g},{:.17g},{:.17g},0,0,0,0.3,0.3,0.3,1,1,"
-        "1\n",
+        "{},{},1,{:.17g},{:.17g},{:.17g},0,0,0,{:g},{:g},{:g},1,1,1\n",
         scene.observed.FindImage(prior.image_id)->name, prior.image_id, p.x(),
-        p.y(), p.z());
+        p.y(), p.z(), position_sigma, position_sigma, position_sigma);
   }
   out << extra_rows;
   return path;
@@ -242,6 +244,104 @@ TEST(NavBundleAdjustmentController, PosteriorStrategyAlignsAfterAPlainBa) {
   const nlohmann::json json = NavBundleAdjustmentJson(options, result, model);
   EXPECT_EQ(json["run"]["strategy"], "posterior");
   EXPECT_TRUE(json["run"].contains("posterior_similarity"));
+}
+
+// Priors in degrees of longitude and latitude, read as metres, their
+// sigmas too (3e-6 deg): the model would be adjusted at a scale of 1e-5
+// and handed back with exit 0.
+TEST(NavBundleAdjustmentController, RefusesAnImplausibleAlignment) {
+  const test::TestScene scene = SmallScene();
+  NavInputs degrees = InputsOf(scene);
+  for (ImagePosePrior& prior : degrees.priors) {
+    Eigen::Vector3d& p = prior.position_in_world;
+    p = Eigen::Vector3d(5.4 + p.x() / (111320.0 * std::cos(43.1 * M_PI / 180)),
+                        43.1 + p.y() / 111320.0, p.z() / 111320.0);
+    prior.position_covariance = 9e-12 * Eigen::Matrix3d::Identity();
+  }
+  for (const NavStrategy strategy :
+       {NavStrategy::kPrior, NavStrategy::kPosterior}) {
+    NavBundleAdjustmentControllerOptions options = FixedWeight(2.0);
+    options.strategy = strategy;
+    Reconstruction model = ModelInItsOwnFrame(scene);
+    ExpectErrorContaining(
+        [&] { AdjustModelWithNavigation(options, degrees, &model); },
+        "Are the positions latitude/longitude in degrees, or another unit, "
+        "read as metres?\n(--Nav.accept_implausible 1 goes on regardless)");
+    options.priors.plausibility.accept_implausible = true;
+    model = ModelInItsOwnFrame(scene);
+    const NavBundleAdjustmentResult result =
+        AdjustModelWithNavigation(options, degrees, &model);
+    const std::vector<std::string>& warnings = result.report.warnings;
+    EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](auto& w) {
+      return w.find("(accepted: --Nav.accept_implausible 1)") !=
+             std::string::npos;
+    })) << NavStrategyName(strategy);
+  }
+  // The L-curve aligns first, too.
+  NavLCurveOptions lcurve;
+  lcurve.input_path = "scene";
+  lcurve.adjuster = test::FixedIntrinsics();
+  const fs::path dir = testing::FreshTestDir("uw_controller_implausible");
+  // nav.csv in degrees: the scene's priors converted as above.
+  test::TestScene in_degrees = scene;
+  in_degrees.priors = degrees.priors;
+  lcurve.priors.nav.nav_path = WriteNav(in_degrees, dir, "", 3e-6);
+  ExpectErrorContaining(
+      [&] { SweepModelLCurve(lcurve, ModelInItsOwnFrame(scene)); },
+      "latitude/longitude in degrees");
+  // Accepted, the warnings say what the log alone looks like, too.
+  NavBundleAdjustmentControllerOptions from_log = FixedWeight(2.0);
+  from_log.priors = lcurve.priors;
+  from_log.priors.plausibility.accept_implausible = true;
+  Reconstruction model = ModelInItsOwnFrame(scene);
+  const std::vector<std::string> warnings =
+      AdjustModelWithNavigation(from_log, &model).report.warnings;
+  for (const std::string text : {"longitude and latitude in degrees?",
+                                 "(accepted: --Nav.accept_implausible 1)"}) {
+    EXPECT_EQ(std::count_if(warnings.begin(), warnings.end(),
+                            [&](const std::string& warning) {
+                              return warning.find(text) != std::string::npos;
+                            }),
+              1)
+        << text;
+  }
+}
+
+// A USBL export: time and position, no attitude, no sigmas. It is fused with
+// --Nav.position_sigma; --Nav.use_attitude 1 has nothing to use.
+TEST(NavBundleAdjustmentController, APositionOnlyLogIsFusedWithoutAttitude) {
+  const test::TestScene scene = SmallScene();
+  const fs::path dir = testing::FreshTestDir("uw_controller_position_only");
+  const fs::path nav = dir / "usbl.csv";
+  {
+    std::ofstream out(nav);
+    out << "image_name,time,x,y,z\n";
+    for (const ImagePosePrior& prior : scene.priors) {
+      const Eigen::Vector3d& p = prior.position_in_world;
+      out << fmt::format("{},{},{:.17g},{:.17g},{:.17g}\n",
+                         scene.observed.FindImage(prior.image_id)->name,
+                         prior.image_id, p.x(), p.y(), p.z());
+    }
+  }
+  NavBundleAdjustmentControllerOptions options = FixedWeight(2.0);
+  options.priors.nav.nav_path = nav;
+  Reconstruction model = ModelInItsOwnFrame(scene);
+  ExpectErrorContaining(
+      [&] { AdjustModelWithNavigation(options, &model); },
+      "has no positive-definite position covariance (a zero sigma in the "
+      "log?); give --Nav.position_sigma");
+  options.priors.position_sigma_m = 0.3;
+  options.adjuster.use_attitude = true;
+  ExpectErrorContaining(
+      [&] { AdjustModelWithNavigation(options, &model); },
+      "--Nav.use_attitude 1: " + nav.string() +
+          " gives no camera rotations (a log needs roll, pitch and yaw or "
+          "heading columns, with their sigmas)");
+  options.adjuster.use_attitude = false;
+  const NavBundleAdjustmentResult result =
+      AdjustModelWithNavigation(options, &model);
+  EXPECT_EQ(result.num_priors, scene.priors.size());
+  EXPECT_LT(test::CameraCenterRmse(model, scene.truth), 0.25);
 }
 
 // A single pass with position priors only: its rotation about the pass is

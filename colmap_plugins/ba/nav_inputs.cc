@@ -43,6 +43,12 @@ void NavInputOptions::Check() const {
     throw ErrorAt("--Nav.override_sigma 1 needs --Nav.position_sigma > 0");
   }
   if (HasNavigation()) nav.Check();
+  plausibility.Check();
+}
+
+std::string NavInputOptions::PriorsName() const {
+  return HasNavigation() ? nav.nav_path.string()
+                         : database_path + " (pose priors)";
 }
 
 NavInputs LoadNavInputs(const NavInputOptions& options,
@@ -83,6 +89,7 @@ NavInputs LoadNavInputs(const NavInputOptions& options,
                     "spelt otherwise?");
     }
     inputs.num_priors_without_image += loaded.other_images.size();
+    inputs.warnings = loaded.warnings;
     return inputs;
   }
   if (!options.database_path.empty()) {

@@ -7,6 +7,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "colmap_plugins/align/alignment_plausibility.h"
 #include "colmap_plugins/ba/nav_bundle_adjuster.h"
 #include "colmap_plugins/nav/camera_prior.h"
 #include "colmap_plugins/nav/pose_prior_import.h"
@@ -23,6 +24,8 @@ struct NavInputs {
   // Navigation rows (or image times) of images the model lacks: not
   // registered by the mapper, or not in the database.
   size_t num_priors_without_image = 0;
+  // What the navigation log alone shows to be suspect.
+  std::vector<std::string> warnings;
 };
 
 // Where the priors of the navigation-fused adjustment come from
@@ -43,14 +46,19 @@ struct NavInputOptions {
   // Sigmas of the rig cameras whose rig.json sigmas are 0 (deg, m).
   double rig_rotation_sigma_deg = 0.0;
   double rig_translation_sigma_m = 0.0;
+  // What the model's first alignment onto the priors must look like
+  // (--Nav.min_range, --Nav.max_range, --Nav.accept_implausible).
+  AlignmentPlausibilityOptions plausibility;
 
   bool HasNavigation() const { return !nav.nav_path.empty(); }
   // Priors from anywhere: the navigation or the database.
   bool HasPriorSource() const {
     return HasNavigation() || !database_path.empty();
   }
+  // The priors as messages name them: the log, or the database's priors.
+  std::string PriorsName() const;
   // override_sigma needs a position sigma; the camera on the vehicle must be
-  // finite.
+  // finite; the plausibility's own rules.
   void Check() const;
 };
 

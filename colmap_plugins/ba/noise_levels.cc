@@ -78,7 +78,8 @@ NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
     for (ImagePosePrior& prior : shifted) {
       prior.position_in_world += offsets.at(prior.dive);
     }
-    const Sim3d step = AlignToPriors(shifted, &images_only, least_squares);
+    const Sim3d step =
+        AlignToPriors(shifted, &images_only, least_squares).b_from_a;
     double largest_move_m = 0.0;
     for (const Image& image : images_only.Images()) {
       const Eigen::Vector3d centre = image.ProjectionCenter();

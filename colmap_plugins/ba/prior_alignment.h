@@ -2,8 +2,10 @@
 // navigation-fused adjustment.
 #pragma once
 
+#include <string>
 #include <vector>
 
+#include "colmap_plugins/align/alignment_plausibility.h"
 #include "colmap_plugins/align/sim3.h"
 #include "colmap_plugins/align/similarity.h"
 #include "colmap_plugins/ba/nav_bundle_adjuster.h"
@@ -15,10 +17,20 @@ namespace uw {
 // priors' positions (robust by default: `options`), applied to the model.
 // A model from SfM has an arbitrary frame and scale; the adjustment only
 // refines locally, so it starts from here (as COLMAP's pose-prior BA does).
-// Returns world_from_model. Throws uw::Error for fewer than 3 or collinear
-// priors.
-Sim3d AlignToPriors(const std::vector<ImagePosePrior>& priors,
-                    Reconstruction* reconstruction,
-                    const SimilarityOptions& options = SimilarityOptions());
+// Returns the similarity (b_from_a: world_from_model). Throws uw::Error for
+// fewer than 3 or collinear priors.
+SimilarityResult AlignToPriors(
+    const std::vector<ImagePosePrior>& priors, Reconstruction* reconstruction,
+    const SimilarityOptions& options = SimilarityOptions());
+
+// AlignToPriors with the robust default, once the similarity has passed
+// CheckAlignmentPlausibility (the priors named `what`): throws its errors
+// unless plausibility.accept_implausible (whose flag is `flag`), the model
+// then unchanged. The warnings to report are added to `warnings`.
+SimilarityResult AlignToPriorsPlausibly(
+    const std::vector<ImagePosePrior>& priors,
+    const AlignmentPlausibilityOptions& plausibility, const std::string& what,
+    const std::string& flag, Reconstruction* reconstruction,
+    std::vector<std::string>* warnings);
 
 }  // namespace uw

@@ -22,9 +22,16 @@ std::optional<std::string> TrackLineWarning(
   }
   const std::optional<std::string> line = DescribeOneLineTrack(centres);
   if (!line) return std::nullopt;
+  const bool log_has_attitude =
+      std::any_of(priors.begin(), priors.end(), [](const ImagePosePrior& p) {
+        return p.cam_from_world_rotation.has_value();
+      });
   return "navigation positions on one pass: the " + *line +
-         ". Fuse the log's roll and pitch too (--Nav.strategy prior "
-         "--Nav.use_attitude 1)";
+         (log_has_attitude
+              ? ". Fuse the log's roll and pitch too (--Nav.strategy prior "
+                "--Nav.use_attitude 1)"
+              : ". The log has no attitude to fix it with: a log with roll, "
+                "pitch and heading would (--Nav.use_attitude 1)");
 }
 
 double MedianRotationSigmaDeg(const BundleCovariance& covariance) {

@@ -49,6 +49,8 @@ std::optional<std::string> WeakRotationWarning(double median_rotation_sigma_deg,
 
 // The warning for position priors on such a track when no attitude prior
 // holds the rotation; none otherwise (no priors, or attitude priors used).
+// It advises --Nav.use_attitude 1 when some prior has a rotation, and says
+// the log has none otherwise.
 // The track is measured on the model's centres of the images with priors:
 // the priors themselves scatter by their noise (0.95 m on the breakwater,
 // more than the pass is wide).

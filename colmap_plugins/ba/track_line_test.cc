@@ -64,7 +64,16 @@ TEST(TrackLine, WarnsForASinglePassWithoutAttitude) {
   ASSERT_TRUE(warning);
   EXPECT_NE(warning->find("21 camera centres"), std::string::npos) << *warning;
   EXPECT_NE(warning->find("nearly on one line"), std::string::npos);
-  EXPECT_NE(warning->find("--Nav.use_attitude 1"), std::string::npos);
+  // Priors without rotation: a log without attitude, nothing to fuse.
+  EXPECT_NE(warning->find("The log has no attitude to fix it with"),
+            std::string::npos);
+  TrackModel with_attitude = pass;
+  with_attitude.priors[3].cam_from_world_rotation =
+      Eigen::Quaterniond::Identity();
+  EXPECT_NE(TrackLineWarning(with_attitude.model, with_attitude.priors, false)
+                ->find("Fuse the log's roll and pitch too (--Nav.strategy "
+                       "prior --Nav.use_attitude 1)"),
+            std::string::npos);
   // Attitude priors hold the rotation; a lawnmower's lines hold it too.
   EXPECT_FALSE(TrackLineWarning(pass.model, pass.priors, true));
   const TrackModel lawnmower = ModelOf(Track(3, 1.0, 0.06));

@@ -49,6 +49,7 @@ void AddModelAlignerFlags(CommandLine* cli, ModelAlignerOptions* options) {
            "0: rigid transform (scale 1), for a model already in metres");
   cli->Add("--min_common_images", &alignment.min_common_images,
            "Fewest images with a reference to align (>= 3)");
+  AddPlausibilityFlags(cli, &alignment.plausibility, "--");
   cli->Add<ReferenceAssociation>(
       "--associate", &alignment.associate,
       "name: images paired with references by name; closest_point: with "

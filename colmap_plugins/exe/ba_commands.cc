@@ -76,6 +76,7 @@ void AddNavBundleAdjustmentFlags(CommandLine* cli, std::string* input_path,
            "covariance, or for all with --Nav.override_sigma 1");
   cli->Add("--Nav.override_sigma", &priors->override_sigma,
            "Use --Nav.position_sigma for every prior");
+  AddPlausibilityFlags(cli, &priors->plausibility, "--Nav.");
   cli->Add("--Dive.offsets", &adjuster->dive_offsets,
            "Estimate one 3D navigation offset per dive (reference dive "
            "fixed); needs --nav");
@@ -302,6 +303,9 @@ void RunLCurve(const LCurveCommandOptions& options) {
   const NavLCurveResult result =
       SweepModelLCurve(options.lcurve, model, PrintLine);
   std::cout << FormatNavLCurveSummary(result);
+  for (const std::string& warning : result.warnings) {
+    std::cerr << "WARNING: " << warning << "\n";
+  }
   const std::string json = LCurveJson(result.curve);
   const fs::path output(options.output_path);
   WriteFilesAtomically(

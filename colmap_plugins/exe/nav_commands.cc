@@ -63,6 +63,9 @@ void PrintSummary(const std::string& database_path,
     std::cout << "Not stored (" << DatabaseSchemaName(summary.schema)
               << " has no place for them):" << dropped << "\n";
   }
+  for (const std::string& warning : summary.warnings) {
+    std::cerr << "WARNING: " << warning << "\n";
+  }
 }
 
 void AddPosePriorImporterFlags(CommandLine* cli,

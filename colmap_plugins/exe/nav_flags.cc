@@ -6,8 +6,9 @@ void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
                  bool nav_required, const std::string& rig_flag) {
   CLI::Option* nav = cli->Add(
       "--nav", &options->nav_path,
-      "Navigation log (nav.csv: vehicle position x,y,z in m, roll,pitch,yaw "
-      "in deg, their sigmas; docs/formats.md)");
+      "Navigation log (nav.csv: time and vehicle position x,y,z in m; "
+      "optionally roll,pitch and yaw or heading in deg, and their sigmas; "
+      "docs/formats.md)");
   if (nav_required) nav->required();
   cli->Add("--image_times", &options->image_times_path,
            "image_name,time of every image (image_times.csv); the log is "
@@ -28,6 +29,24 @@ void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
   cli->Add("--time_offset", &nav_to_camera.time_offset_s,
            "Seconds added to every image time to get the navigation time at "
            "which it was taken");
+  cli->Add("--unlogged_roll_pitch_sigma",
+           &nav_to_camera.unlogged_roll_pitch_sigma_deg,
+           "Sigma (deg) of the roll and pitch a log with heading but no roll "
+           "and pitch is taken to have (0), carried through the lever arm");
+}
+
+void AddPlausibilityFlags(CommandLine* cli,
+                          AlignmentPlausibilityOptions* options,
+                          const std::string& prefix) {
+  cli->Add(prefix + "min_range", &options->min_range_m,
+           "Refuse an alignment whose scale puts the cameras closer than this "
+           "to what they see (median depth, m): degrees read as metres");
+  cli->Add(prefix + "max_range", &options->max_range_m,
+           "Refuse an alignment whose scale puts the cameras farther than "
+           "this from what they see (m): millimetres read as metres");
+  cli->Add(prefix + "accept_implausible", &options->accept_implausible,
+           "1: an implausible alignment (range, a navigation that does not "
+           "follow the images) is a warning, not an error");
 }
 
 }  // namespace uw

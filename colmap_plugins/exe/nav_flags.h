@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "colmap_plugins/align/alignment_plausibility.h"
 #include "colmap_plugins/nav/pose_prior_import.h"
 #include "common/cli/flags.h"
 
@@ -16,5 +17,11 @@ namespace uw {
 // --Rig.config), --mount, --lever_arm, --boresight and --time_offset.
 void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
                  bool nav_required, const std::string& rig_flag);
+
+// Adds <prefix>min_range, <prefix>max_range and <prefix>accept_implausible
+// (model_aligner: "--"; bundle_adjuster, lcurve: "--Nav.").
+void AddPlausibilityFlags(CommandLine* cli,
+                          AlignmentPlausibilityOptions* options,
+                          const std::string& prefix);
 
 }  // namespace uw

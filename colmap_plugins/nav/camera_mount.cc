@@ -81,6 +81,11 @@ void NavToCameraOptions::Check() const {
     throw ErrorAt("time offset ", SecondsText(time_offset_s),
                   " s must be finite");
   }
+  if (!(unlogged_roll_pitch_sigma_deg > 0.0 &&
+        std::isfinite(unlogged_roll_pitch_sigma_deg))) {
+    throw ErrorAt("--unlogged_roll_pitch_sigma ", unlogged_roll_pitch_sigma_deg,
+                  " deg must be > 0");
+  }
 }
 
 Rigid3d VehicleFromCam(const NavToCameraOptions& options) {

@@ -41,8 +41,12 @@ struct NavToCameraOptions {
   // image_times.csv or its nav.csv row) + time_offset_s: e.g. +0.2 when the
   // camera's time stamps run 0.2 s behind the navigation's clock.
   double time_offset_s = 0.0;
+  // The sigma (deg) of the roll and pitch taken as 0 for a log that has
+  // yaw but no roll and pitch: how far a vehicle rolls and pitches in
+  // survey, carried through the lever arm into the camera's position.
+  double unlogged_roll_pitch_sigma_deg = 5.0;
 
-  // Throws uw::Error on non-finite values.
+  // Throws uw::Error on non-finite values and a sigma <= 0.
   void Check() const;
 };
 

@@ -1,6 +1,7 @@
 #include "colmap_plugins/nav/camera_prior.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <unordered_map>
 
@@ -18,6 +19,12 @@ namespace {
 // error beyond an extrapolation limit they were computed to meet.
 constexpr double kRelativeTimeSlack = 1e-9;
 
+double Median(std::vector<double> values) {
+  const auto middle = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
 Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d skew;
   skew << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
@@ -32,6 +39,9 @@ struct VehicleState {
   Eigen::Vector3d position_sigma;
   Eigen::Vector3d rpy_sigma;
   NavSampling sampling = NavSampling::kExact;
+  // What the log has (NavRecord); the rest of rpy is 0 and means nothing.
+  bool has_roll_pitch = true;
+  bool has_yaw = true;
 };
 
 VehicleState StateOfRow(const NavRecord& row) {
@@ -40,7 +50,9 @@ VehicleState StateOfRow(const NavRecord& row) {
           row.rpy_rad,
           row.position_sigma,
           row.rpy_sigma_rad,
-          NavSampling::kExact};
+          NavSampling::kExact,
+          row.has_roll_pitch,
+          row.has_yaw};
 }
 
 // Linear in position, slerp in attitude along the segment a -> b at
@@ -67,6 +79,8 @@ VehicleState Interpolate(const NavRecord& a, const NavRecord& b,
   state.sampling = fraction >= 0.0 && fraction <= 1.0
                        ? NavSampling::kInterpolated
                        : NavSampling::kExtrapolated;
+  state.has_roll_pitch = a.has_roll_pitch && b.has_roll_pitch;
+  state.has_yaw = a.has_yaw && b.has_yaw;
   return state;
 }
 
@@ -119,6 +133,47 @@ class Navigation {
         }
       }
     }
+  }
+
+  // Most of the images outside the navigation is one clock, not stray
+  // images: the error says by how much, before any one image is refused.
+  void CheckClock(const std::vector<ImageToPlace>& images, double time_offset_s,
+                  const std::string& images_file) const {
+    std::vector<double> outside;
+    std::vector<double> image_times;
+    for (const ImageToPlace& image : images) {
+      image_times.push_back(image.time_s);
+      const auto dive = dives_.find(image.dive);
+      const bool covered =
+          dive != dives_.end()
+              ? dive->second.Covers(image.time_s)
+              : std::any_of(dives_.begin(), dives_.end(), [&](const auto& d) {
+                  return d.second.Covers(image.time_s);
+                });
+      if (!covered) outside.push_back(image.time_s);
+    }
+    if (outside.size() < 2 || 2 * outside.size() <= images.size()) return;
+    std::vector<double> nav_times;
+    for (const auto& [number, dive] : dives_) {
+      for (const NavRecord* row : dive.rows) nav_times.push_back(row->time_s);
+    }
+    const double shift = Median(nav_times) - Median(outside);
+    const auto [first, last] =
+        std::minmax_element(image_times.begin(), image_times.end());
+    const auto [nav_first, nav_last] =
+        std::minmax_element(nav_times.begin(), nav_times.end());
+    throw ErrorAt(
+        images_file, ": ", outside.size(), " of its ", images.size(),
+        " images lie outside the navigation (the images from ",
+        TimeText(*first), " to ", TimeText(*last),
+        " s on the navigation's clock, with --time_offset ",
+        SecondsText(time_offset_s), "; ", nav_name_, " from ",
+        TimeText(*nav_first), " to ", TimeText(*nav_last),
+        " s). Is the camera clock off by about ", DurationText(shift),
+        "? --time_offset ",
+        SecondsText(std::round((time_offset_s + shift) * 1000.0) / 1000.0),
+        " puts the median of those ", outside.size(),
+        " at the navigation's median time");
   }
 
   int DiveOf(const ImageToPlace& image) const {
@@ -193,27 +248,59 @@ Rigid3d Compose(const Rigid3d& c_from_b, const Rigid3d& b_from_a) {
 
 CameraPrior PriorOf(const ImageToPlace& image, int dive,
                     const VehicleState& vehicle,
-                    const Rigid3d& vehicle_from_cam) {
+                    const Rigid3d& vehicle_from_cam,
+                    double unlogged_roll_pitch_sigma_rad) {
   CameraPrior prior;
   prior.image_name = image.name;
   prior.dive = dive;
   prior.time_s = image.time_s;
   prior.sampling = vehicle.sampling;
+  const Eigen::Matrix3d position_covariance =
+      vehicle.position_sigma.cwiseAbs2().asDiagonal();
+  if (vehicle.has_roll_pitch) {
+    // World down in the camera: the same for every yaw, so rpy's yaw (0
+    // when not logged) does not matter.
+    prior.gravity_in_cam =
+        (vehicle.world_from_vehicle * vehicle_from_cam.rotation.normalized())
+            .conjugate() *
+        -Eigen::Vector3d::UnitZ();
+  }
+  if (!vehicle.has_yaw) {
+    // The lever arm turns with the unknown yaw: only its vertical part is
+    // known, its horizontal part h lies anywhere on a circle (variance
+    // |h|²/2 along each horizontal axis).
+    const Eigen::Vector3d lever_arm_levelled =
+        vehicle.world_from_vehicle * vehicle_from_cam.translation;
+    prior.position =
+        vehicle.position + lever_arm_levelled.z() * Eigen::Vector3d::UnitZ();
+    const double half_h2 = 0.5 * lever_arm_levelled.head<2>().squaredNorm();
+    prior.position_covariance =
+        position_covariance +
+        Eigen::Vector3d(half_h2, half_h2, 0.0).asDiagonal().toDenseMatrix();
+    return prior;
+  }
+  Eigen::Vector3d rpy_sigma = vehicle.rpy_sigma;
+  if (!vehicle.has_roll_pitch) {
+    rpy_sigma.head<2>().setConstant(unlogged_roll_pitch_sigma_rad);
+  }
   const Eigen::Matrix3d world_from_vehicle =
       vehicle.world_from_vehicle.toRotationMatrix();
   const Eigen::Vector3d lever_arm_in_world =
       world_from_vehicle * vehicle_from_cam.translation;
   prior.position = vehicle.position + lever_arm_in_world;
-  prior.cam_from_world_rotation =
-      (vehicle.world_from_vehicle * vehicle_from_cam.rotation.normalized())
-          .conjugate()
-          .normalized();
-  prior.rotation_covariance =
-      WorldRotationCovariance(vehicle.rpy, vehicle.rpy_sigma);
+  const Eigen::Matrix3d rotation_covariance =
+      WorldRotationCovariance(vehicle.rpy, rpy_sigma);
   const Eigen::Matrix3d lever_skew = Skew(lever_arm_in_world);
-  prior.position_covariance =
-      Eigen::Matrix3d(vehicle.position_sigma.cwiseAbs2().asDiagonal()) +
-      lever_skew * prior.rotation_covariance * lever_skew.transpose();
+  prior.position_covariance = position_covariance + lever_skew *
+                                                        rotation_covariance *
+                                                        lever_skew.transpose();
+  if (vehicle.has_roll_pitch) {
+    prior.cam_from_world_rotation =
+        (vehicle.world_from_vehicle * vehicle_from_cam.rotation.normalized())
+            .conjugate()
+            .normalized();
+    prior.rotation_covariance = rotation_covariance;
+  }
   return prior;
 }
 
@@ -249,6 +336,9 @@ std::vector<CameraPrior> CameraPriorsFromNavigation(
   }
 
   const Navigation navigation(nav, sources.nav);
+  navigation.CheckClock(
+      images, options.time_offset_s,
+      image_times != nullptr ? sources.image_times : sources.nav);
   const Rigid3d vehicle_from_reference = VehicleFromCam(options);
   std::vector<CameraPrior> priors;
   priors.reserve(images.size());
@@ -271,9 +361,25 @@ std::vector<CameraPrior> CameraPriorsFromNavigation(
     }
     const int dive = navigation.DiveOf(image);
     priors.push_back(
-        PriorOf(image, dive, navigation.At(image, dive), vehicle_from_cam));
+        PriorOf(image, dive, navigation.At(image, dive), vehicle_from_cam,
+                options.unlogged_roll_pitch_sigma_deg * M_PI / 180.0));
   }
   return priors;
+}
+
+void CheckImageClock(const std::vector<NavRecord>& nav,
+                     const std::vector<ImageTime>& image_times,
+                     const NavToCameraOptions& options,
+                     const NavigationSources& sources) {
+  if (nav.empty()) throw ErrorAt(sources.nav, ": no navigation rows");
+  std::vector<ImageToPlace> images;
+  for (const ImageTime& image : image_times) {
+    images.push_back({image.image_name, image.time_s + options.time_offset_s,
+                      image.dive,
+                      sources.image_times + ":" + std::to_string(image.line)});
+  }
+  Navigation(nav, sources.nav)
+      .CheckClock(images, options.time_offset_s, sources.image_times);
 }
 
 std::vector<ImageTime> RigImageTimes(const std::vector<NavRecord>& nav,

@@ -4,6 +4,7 @@
 // and, for the cameras of a rig, through the rig's calibration.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,12 +36,23 @@ struct CameraPrior {
   // through the lever arm, [l]x Σ_w [l]xᵀ with l the camera's offset from
   // the vehicle reference point in world axes. Its correlation with the
   // rotation error below is not kept.
+  // A log without roll and pitch takes them as 0 with
+  // NavToCameraOptions::unlogged_roll_pitch_sigma_deg. A log without yaw
+  // leaves the lever arm's horizontal part h pointing anywhere: the camera
+  // is placed at the vehicle plus the arm's vertical part (the vehicle
+  // level, or at its logged roll and pitch), with |h|²/2 added along each
+  // horizontal axis.
   Eigen::Matrix3d position_covariance = Eigen::Matrix3d::Zero();
-  Eigen::Quaterniond cam_from_world_rotation = Eigen::Quaterniond::Identity();
+  // Only when the log has roll, pitch and yaw (or heading).
+  std::optional<Eigen::Quaterniond> cam_from_world_rotation;
   // Σ_w (rad²) of the world-frame rotation error w, R_wc_true = Exp(w) *
   // R_wc_prior, from the roll/pitch/yaw sigmas through the Euler-angle
-  // Jacobian (attitude.h). Mount, boresight and rig add nothing.
+  // Jacobian (attitude.h). Mount, boresight and rig add nothing. Zero
+  // without cam_from_world_rotation.
   Eigen::Matrix3d rotation_covariance = Eigen::Matrix3d::Zero();
+  // World down (-z) in the camera frame, when the log has roll and pitch:
+  // it needs no yaw.
+  std::optional<Eigen::Vector3d> gravity_in_cam;
 };
 
 // File names for messages; the records' line numbers refer to them.
@@ -73,6 +85,18 @@ std::vector<CameraPrior> CameraPriorsFromNavigation(
     const std::vector<ImageTime>* image_times,
     const NavToCameraOptions& options, const RigConfig* rig = nullptr,
     const NavigationSources& sources = {});
+
+// The clock check CameraPriorsFromNavigation makes first, for callers that
+// use image times otherwise (model_aligner --associate closest_point): when
+// more than half of the images (and at least 2), at their time +
+// options.time_offset_s, lie outside every dive's span (their own dive's,
+// when image_times gives it), throws uw::Error naming both spans and the
+// --time_offset that puts the median of those images at the navigation's
+// median time (a camera clock never set is days off).
+void CheckImageClock(const std::vector<NavRecord>& nav,
+                     const std::vector<ImageTime>& image_times,
+                     const NavToCameraOptions& options,
+                     const NavigationSources& sources = {});
 
 // Times of the images of a rig whose cameras fire with the fixed delays of
 // rig.json, when the log (with image names) samples the reference camera:

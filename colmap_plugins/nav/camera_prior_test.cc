@@ -70,7 +70,7 @@ Rigid3d WorldFromCam(const Motion& motion, double t,
 // Distance of a prior from a true world_from_cam: centre (m) + angle (rad).
 double PoseError(const CameraPrior& prior, const Rigid3d& world_from_cam) {
   return (prior.position - world_from_cam.translation).norm() +
-         prior.cam_from_world_rotation.angularDistance(
+         prior.cam_from_world_rotation->angularDistance(
              world_from_cam.rotation.conjugate());
 }
 
@@ -108,7 +108,7 @@ TEST(CameraPrior, ARowPlacesTheCameraThroughMountAndLeverArm) {
   EXPECT_LT((priors[0].position - Eigen::Vector3d(10, 21, -5.5)).norm(), 1e-14);
   Eigen::Matrix3d world_from_cam;  // columns: east, south, down
   world_from_cam << 1, 0, 0, 0, -1, 0, 0, 0, -1;
-  EXPECT_LT((priors[0].cam_from_world_rotation.toRotationMatrix() -
+  EXPECT_LT((priors[0].cam_from_world_rotation->toRotationMatrix() -
              world_from_cam.transpose())
                 .norm(),
             1e-15);
@@ -185,6 +185,41 @@ TEST(CameraPrior, UnixTimesAreNamedInFullAndAsDates) {
       "(2024-10-08T17:53:21.25Z) s, nav.csv lines 2 to 3");
 }
 
+// Every image of a survey 58 days and 3 hours off the log (a camera clock
+// never set): one error for the clock, with the offset that fixes it, not
+// one for the first image.
+TEST(CameraPrior, AClockOffForMostImagesIsNamedWithItsOffset) {
+  const Motion motion;
+  const double start = 1728410000.25;
+  std::vector<NavRecord> nav;
+  for (int k = 0; k < 7; ++k) {
+    nav.push_back(motion.Row("", start + 600.0 * k, 1, k + 2));
+  }
+  std::vector<ImageTime> times;
+  for (int k = 0; k < 5; ++k) {
+    times.push_back(
+        {std::to_string(k) + ".png", start - 5022000.0 + 900.0 * k, 0, k + 2});
+  }
+  // One image within the log does not change the verdict.
+  times.push_back({"5.png", start + 100.0, 0, 7});
+  NavToCameraOptions options = SomeCamera();
+  options.time_offset_s = 2.5;
+  EXPECT_EQ(
+      ErrorOf([&] { CameraPriorsFromNavigation(nav, &times, options); }),
+      "image_times.csv: 5 of its 6 images lie outside the navigation (the "
+      "images from 1723388002.75 (2024-08-11T14:53:22.75Z) to "
+      "1728410102.75 (2024-10-08T17:55:02.75Z) s on the navigation's clock, "
+      "with --time_offset 2.5; nav.csv from 1728410000.25 "
+      "(2024-10-08T17:53:20.25Z) to 1728413600.25 (2024-10-08T18:53:20.25Z) "
+      "s). Is the camera clock off by about 58 d 2 h 59 min 57.5 s? "
+      "--time_offset 5022000 puts the median of those 5 at the navigation's "
+      "median time");
+  // Applied, the offset places every image inside the log.
+  options.time_offset_s = 5022000.0;
+  times.pop_back();
+  EXPECT_EQ(CameraPriorsFromNavigation(nav, &times, options).size(), 5u);
+}
+
 // Yaw from 179 to -179 deg turns 2 deg through 180, not 358 back.
 TEST(CameraPrior, AttitudeTakesTheShorterArc) {
   NavRecord a;
@@ -196,7 +231,7 @@ TEST(CameraPrior, AttitudeTakesTheShorterArc) {
   const CameraPrior prior =
       CameraPriorsFromNavigation({a, b}, &times, NavToCameraOptions())[0];
   const Eigen::Matrix3d world_from_vehicle =
-      prior.cam_from_world_rotation.conjugate().toRotationMatrix() *
+      prior.cam_from_world_rotation->conjugate().toRotationMatrix() *
       NominalVehicleFromCamRotation(CameraMount::kDown).transpose();
   EXPECT_NEAR(std::abs(RollPitchYawFromRotation(world_from_vehicle).z()), M_PI,
               1e-12);
@@ -397,7 +432,7 @@ TEST(CameraPrior, CovariancesMatchMonteCarlo) {
   const CameraPrior prior =
       CameraPriorsFromNavigation({row}, nullptr, options, &rig)[0];
   const Eigen::Matrix3d prior_world_from_cam =
-      prior.cam_from_world_rotation.conjugate().toRotationMatrix();
+      prior.cam_from_world_rotation->conjugate().toRotationMatrix();
 
   std::mt19937_64 rng(11);
   std::normal_distribution<double> normal(0.0, 1.0);
@@ -418,7 +453,7 @@ TEST(CameraPrior, CovariancesMatchMonteCarlo) {
         CameraPriorsFromNavigation({noisy}, nullptr, options, &rig)[0];
     const Eigen::Vector3d dp = sample.position - prior.position;
     const Eigen::Vector3d w =
-        Log(sample.cam_from_world_rotation.conjugate().toRotationMatrix() *
+        Log(sample.cam_from_world_rotation->conjugate().toRotationMatrix() *
             prior_world_from_cam.transpose());
     position_sum += dp * dp.transpose();
     rotation_sum += w * w.transpose();
@@ -441,6 +476,110 @@ TEST(CameraPrior, CovariancesMatchMonteCarlo) {
                     .norm() /
                 prior.position_covariance.norm(),
             0.2);
+}
+
+// A USBL log: positions only. The lever arm's horizontal part (0.6, -0.2)
+// turns with a yaw nobody logged: the camera is placed at the arm's
+// vertical part, the circle's radius² / 2 added along each horizontal axis,
+// and no rotation or gravity is claimed.
+TEST(CameraPrior, APositionOnlyLogSpreadsTheLeverArmOverItsCircle) {
+  const Motion motion;
+  NavRecord row = motion.Row("a.png", 0.0);
+  row.has_roll_pitch = false;
+  row.has_yaw = false;
+  row.rpy_rad.setZero();
+  row.rpy_sigma_rad.setZero();
+  const CameraPrior prior =
+      CameraPriorsFromNavigation({row}, nullptr, SomeCamera())[0];
+  EXPECT_EQ(prior.position, row.position + Eigen::Vector3d(0, 0, -0.3));
+  const Eigen::Matrix3d expected =
+      Eigen::Vector3d(0.25 + 0.2, 0.36 + 0.2, 0.0004).asDiagonal();
+  EXPECT_LT((prior.position_covariance - expected).norm(), 1e-15);
+  EXPECT_FALSE(prior.cam_from_world_rotation.has_value());
+  EXPECT_FALSE(prior.gravity_in_cam.has_value());
+}
+
+// Roll and pitch without heading: the camera's gravity direction is known
+// (it needs no yaw), its rotation is not.
+TEST(CameraPrior, RollAndPitchWithoutHeadingGiveGravityOnly) {
+  const Motion motion;
+  const NavRecord full = motion.Row("a.png", 0.0);
+  NavRecord row = full;
+  row.has_yaw = false;
+  row.rpy_rad.z() = 0.0;
+  const NavToCameraOptions options = SomeCamera();
+  const CameraPrior with_yaw =
+      CameraPriorsFromNavigation({full}, nullptr, options)[0];
+  const CameraPrior prior =
+      CameraPriorsFromNavigation({row}, nullptr, options)[0];
+  ASSERT_TRUE(prior.gravity_in_cam.has_value());
+  EXPECT_LT((*prior.gravity_in_cam -
+             *with_yaw.cam_from_world_rotation * -Eigen::Vector3d::UnitZ())
+                .norm(),
+            1e-14);
+  EXPECT_FALSE(prior.cam_from_world_rotation.has_value());
+  // Centred on the arm's height under the logged roll and pitch.
+  const Eigen::Vector3d arm =
+      WorldFromVehicleRotation(row.rpy_rad) * options.lever_arm_m;
+  EXPECT_LT(
+      (prior.position - row.position - Eigen::Vector3d(0, 0, arm.z())).norm(),
+      1e-14);
+}
+
+// Heading without roll and pitch: roll and pitch taken as 0 with their
+// unlogged sigma (5 deg), carried through a long lever arm; the position
+// covariance against the scatter of camera centres over draws of the
+// attitude the vehicle may have had.
+TEST(CameraPrior, HeadingWithoutRollAndPitchMatchesMonteCarlo) {
+  const Motion motion;
+  NavRecord row = motion.Row("a.png", 0.0);
+  row.has_roll_pitch = false;
+  row.rpy_rad.head<2>().setZero();
+  row.rpy_sigma_rad = Eigen::Vector3d(0.0, 0.0, 2.0 * kDegToRad);
+  row.position_sigma = Eigen::Vector3d(0.01, 0.02, 0.005);
+  NavToCameraOptions options = SomeCamera();
+  options.lever_arm_m = Eigen::Vector3d(0.8, -0.5, 0.3);
+  const CameraPrior prior =
+      CameraPriorsFromNavigation({row}, nullptr, options)[0];
+  EXPECT_FALSE(prior.cam_from_world_rotation.has_value());
+  EXPECT_FALSE(prior.gravity_in_cam.has_value());
+  EXPECT_LT((prior.position - row.position -
+             WorldFromVehicleRotation(row.rpy_rad) * options.lever_arm_m)
+                .norm(),
+            1e-14);
+
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const Eigen::Vector3d rpy_sigma(5.0 * kDegToRad, 5.0 * kDegToRad,
+                                  2.0 * kDegToRad);
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  const int draws = 40000;
+  for (int i = 0; i < draws; ++i) {
+    Eigen::Vector3d rpy = row.rpy_rad;
+    Eigen::Vector3d position = row.position;
+    for (int k = 0; k < 3; ++k) {
+      rpy(k) += rpy_sigma(k) * normal(rng);
+      position(k) += row.position_sigma(k) * normal(rng);
+    }
+    const Eigen::Vector3d dp =
+        position + WorldFromVehicleRotation(rpy) * options.lever_arm_m -
+        prior.position;
+    sum += dp * dp.transpose();
+  }
+  const double error = (sum / draws - prior.position_covariance).norm() /
+                       prior.position_covariance.norm();
+  std::cout << "[ figures ] heading-only prior position covariance vs Monte "
+               "Carlo (40000 draws, relative Frobenius): "
+            << error << "\n";
+  EXPECT_LT(error, 0.03);
+  // Without the unlogged roll and pitch it would be far off.
+  options.unlogged_roll_pitch_sigma_deg = 1e-6;
+  EXPECT_GT((CameraPriorsFromNavigation({row}, nullptr, options)[0]
+                 .position_covariance -
+             prior.position_covariance)
+                    .norm() /
+                prior.position_covariance.norm(),
+            0.5);
 }
 
 }  // namespace

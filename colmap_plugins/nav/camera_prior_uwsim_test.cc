@@ -134,7 +134,7 @@ Errors PriorsAgainstTruth(const sim::SimConfig& config, CameraMount mount,
     const Image& image = *truth_of_name.at(prior.image_name);
     const double centre_error =
         (prior.position - image.ProjectionCenter()).norm();
-    const double angle_error = prior.cam_from_world_rotation.angularDistance(
+    const double angle_error = prior.cam_from_world_rotation->angularDistance(
         image.cam_from_world.rotation.normalized());
     const RigCameraConfig* camera =
         has_rig ? rig.CameraOfImage(prior.image_name) : nullptr;

@@ -1,5 +1,6 @@
 #include "colmap_plugins/nav/nav_csv.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -77,6 +78,71 @@ TEST_F(NavCsvTest, QuotedExportsAreRead) {
   EXPECT_EQ(nav[0].position_sigma, Eigen::Vector3d(0.5, 0.5, 0.1));
 }
 
+// A USBL export: positions only, no sigmas. Nothing is invented for what
+// was not logged.
+TEST_F(NavCsvTest, PositionOnlyLogsAreRead) {
+  const std::vector<NavRecord> nav =
+      Read("image_name,time,x,y,z\na.png,0,1,2,3\nb.png,1,4,5,6\n");
+  ASSERT_EQ(nav.size(), 2u);
+  EXPECT_FALSE(nav[1].has_roll_pitch);
+  EXPECT_FALSE(nav[1].has_yaw);
+  EXPECT_EQ(nav[1].position, Eigen::Vector3d(4, 5, 6));
+  EXPECT_EQ(nav[1].rpy_rad, Eigen::Vector3d::Zero());
+  EXPECT_EQ(nav[1].position_sigma, Eigen::Vector3d::Zero());
+  // Stated position sigmas, and roll and pitch without yaw.
+  const std::vector<NavRecord> levelled = Read(
+      "time,x,y,z,std_x,std_y,std_z,roll,pitch\n0,1,2,3,0.5,0.5,0.1,2,3\n");
+  EXPECT_TRUE(levelled[0].has_roll_pitch);
+  EXPECT_FALSE(levelled[0].has_yaw);
+  EXPECT_EQ(levelled[0].position_sigma, Eigen::Vector3d(0.5, 0.5, 0.1));
+  EXPECT_EQ(levelled[0].rpy_rad, Eigen::Vector3d(2, 3, 0) * kDegToRad);
+  EXPECT_EQ(levelled[0].rpy_sigma_rad, Eigen::Vector3d::Zero());
+}
+
+// Heading turns clockwise from north; yaw counter-clockwise from east.
+TEST_F(NavCsvTest, HeadingIsReadAsYaw) {
+  const std::vector<NavRecord> nav = Read(
+      "time,x,y,z,heading,std_heading\n0,1,2,3,0,2\n1,1,2,3,90,2\n"
+      "2,1,2,3,225,2\n");
+  ASSERT_EQ(nav.size(), 3u);
+  EXPECT_FALSE(nav[0].has_roll_pitch);
+  EXPECT_TRUE(nav[0].has_yaw);
+  EXPECT_DOUBLE_EQ(nav[0].rpy_rad.z(), M_PI / 2);          // north
+  EXPECT_DOUBLE_EQ(nav[1].rpy_rad.z(), 0.0);               // east
+  EXPECT_DOUBLE_EQ(nav[2].rpy_rad.z(), -135 * kDegToRad);  // south-west
+  EXPECT_EQ(nav[2].rpy_sigma_rad, Eigen::Vector3d(0, 0, 2 * kDegToRad));
+}
+
+TEST_F(NavCsvTest, ColumnsThatComeTogetherAreChecked) {
+  const std::string where = path_.string() + ":1: ";
+  const struct {
+    std::string header;
+    std::string message;
+  } cases[] = {
+      {"time,x,y,z,roll",
+       "the columns roll, pitch come together or not at all"},
+      {"time,x,y,z,std_x,std_y",
+       "the columns std_x, std_y, std_z come together or not at all"},
+      {"time,x,y,z,yaw,heading", "yaw and heading say the same; give one"},
+      {"time,x,y,z,yaw,std_yaw,std_heading",
+       "std_yaw and std_heading say the same; give one"},
+      {"time,x,y,z,std_yaw",
+       "std_yaw is the sigma of yaw or heading, which "
+       "the log does not have"},
+      {"time,x,y,z,yaw,std_roll,std_pitch",
+       "std_roll and std_pitch are the sigmas of roll and pitch, which the "
+       "log does not have"},
+  };
+  for (const auto& test : cases) {
+    const std::string text =
+        test.header + "\n" +
+        std::string(std::count(test.header.begin(), test.header.end(), ','),
+                    ',') +
+        "\n";
+    EXPECT_EQ(Error(text), where + test.message) << test.header;
+  }
+}
+
 TEST_F(NavCsvTest, BadRowsNameFileAndLine) {
   const std::string good = "a.png,0,1,4,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n";
   const std::string where = path_.string() + ":";
@@ -112,7 +178,7 @@ TEST_F(NavCsvTest, BadRowsNameFileAndLine) {
        where + "3: time 1728410000.25 (2024-10-08T17:53:20.25Z) s is not "
                "after the previous row of dive 1 (line 2, 1728410000.25 "
                "(2024-10-08T17:53:20.25Z) s)"},
-      {"image_name,time,x,y,z\n", where + "1: expected the header "},
+      {"image_name,time,x,y\n", where + "1: expected the header "},
       {"# no header\n" + good, where + "2: expected the header"},
       {kHeader, path_.string() + ": no navigation rows"},
       {"", path_.string() + ": no header row"},

@@ -8,6 +8,7 @@
 
 #include "colmap_plugins/nav/image_times.h"
 #include "colmap_plugins/nav/nav_csv.h"
+#include "colmap_plugins/nav/nav_plausibility.h"
 #include "colmap_plugins/nav/rig_config.h"
 #include "common/util/error.h"
 
@@ -47,10 +48,15 @@ PosePrior DatabasePosePrior(const CameraPrior& prior, uint32_t image_id) {
   if (IsPositiveDefinite(prior.position_covariance)) {
     database_prior.position_covariance = prior.position_covariance;
   }
-  const Eigen::Quaterniond& q = prior.cam_from_world_rotation;
-  database_prior.cam_from_world_rotation_wxyz =
-      Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
-  database_prior.gravity_in_cam = q * -Eigen::Vector3d::UnitZ();
+  // What the log did not have is not written: a rotation from a log
+  // without attitude would be the mount alone, a lie COLMAP would use.
+  if (prior.cam_from_world_rotation) {
+    const Eigen::Quaterniond& q = *prior.cam_from_world_rotation;
+    database_prior.cam_from_world_rotation_wxyz =
+        Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+  }
+  if (prior.gravity_in_cam)
+    database_prior.gravity_in_cam = *prior.gravity_in_cam;
   return database_prior;
 }
 
@@ -64,6 +70,10 @@ LoadedCameraPriors LoadCameraPriors(
   sources.nav = options.nav_path.string();
   loaded.nav = ReadNavigationCsv(options.nav_path);
   const std::vector<NavRecord>& nav = loaded.nav;
+  if (const auto warning =
+          DegreesLikePositionsWarning(nav, options.nav_path.string())) {
+    loaded.warnings.push_back(*warning);
+  }
   std::vector<ImageTime> image_times;
   if (!options.image_times_path.empty()) {
     sources.image_times = options.image_times_path.string();
@@ -225,6 +235,7 @@ PosePriorImportSummary ImportPosePriors(
   summary.num_images_without_priors =
       summary.num_database_images - summary.num_priors;
   summary.other_images = loaded.other_images;
+  summary.warnings = loaded.warnings;
   summary.written = database.WritePosePriors(database_priors);
   return summary;
 }

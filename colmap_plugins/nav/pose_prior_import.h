@@ -45,12 +45,14 @@ struct PosePriorImportSummary {
   // Priors whose position covariance is singular (a zero sigma in the log,
   // as in uwsim's truth/nav.csv): COLMAP cannot weight them by it.
   size_t num_singular_covariances = 0;
+  // What the log alone shows to be suspect (nav_plausibility.h).
+  std::vector<std::string> warnings;
   PosePriorWriteSummary written;
 };
 
 // The database's PosePrior for `prior`: position and covariance in the
-// cartesian (world) frame, cam_from_world rotation, and gravity (world -z)
-// in the camera frame.
+// cartesian (world) frame, and the cam_from_world rotation and gravity
+// (world -z) in the camera frame when the log had the attitude for them.
 PosePrior DatabasePosePrior(const CameraPrior& prior, uint32_t image_id);
 
 // The navigation inputs of `options` read, checked against each other and
@@ -72,6 +74,8 @@ struct LoadedCameraPriors {
   std::vector<CameraPrior> priors;
   // The images of the rows left out, in file order.
   std::vector<std::string> other_images;
+  // What the log alone shows to be suspect (nav_plausibility.h).
+  std::vector<std::string> warnings;
 };
 LoadedCameraPriors LoadCameraPriors(
     const PosePriorImportOptions& options,

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <set>
@@ -343,11 +344,83 @@ TEST(PosePriorImporter, ByNameOnlyTheLoggedImagesGetPriors) {
             std::string::npos)
       << result.output;
   EXPECT_NE(result.output.find("Images without priors: 16"), std::string::npos);
+  EXPECT_EQ(result.output.find("WARNING"), std::string::npos) << result.output;
   const auto stored = StoredPriors(database);
   ASSERT_EQ(stored.size(), 8u);
   for (const auto& [name, prior] : stored) {
     EXPECT_EQ(name.substr(0, 5), "cam1/");
   }
+}
+
+// The survey's true nav.csv rewritten into `path`: its header and each
+// row's fields (image_name,time,dive,x,y,z,roll,...) as `rewrite` leaves
+// them, comment lines dropped.
+void RewriteTruthNav(const fs::path& path,
+                     const std::function<void(std::vector<std::string>*,
+                                              bool header)>& rewrite) {
+  std::ifstream in(TheSurvey().sim / "truth" / "nav.csv");
+  std::ofstream out(path);
+  bool header = true;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> fields;
+    std::stringstream row(line);
+    for (std::string field; std::getline(row, field, ',');) {
+      fields.push_back(field);
+    }
+    rewrite(&fields, header);
+    header = false;
+    for (size_t k = 0; k < fields.size(); ++k) {
+      out << (k == 0 ? "" : ",") << fields[k];
+    }
+    out << "\n";
+  }
+}
+
+// A USBL export of the survey: time and position, no attitude. The priors'
+// positions are stored; no rotation is (it would be the mount alone).
+TEST(PosePriorImporter, APositionOnlyLogStoresNoRotation) {
+  const fs::path dir = FreshTestDir("uw_pose_prior_importer_test");
+  const fs::path database = FreshDatabase(dir);
+  RewriteTruthNav(dir / "usbl.csv", [](std::vector<std::string>* fields, bool) {
+    fields->resize(6);
+  });
+  const auto result = Import(
+      database, "--nav" + FileOf(dir / "usbl.csv") + " --lever_arm 0,0,0");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("Images with priors: 8 (8 at a navigation row"),
+            std::string::npos)
+      << result.output;
+  EXPECT_EQ(Sqlite3(database,
+                    "SELECT count(*) FROM images WHERE prior_tx IS NOT NULL "
+                    "AND prior_qw IS NULL;"),
+            std::vector<std::vector<std::string>>{{"8"}});
+}
+
+// The survey's log with x, y as longitude and latitude in degrees: the
+// importer has no model to judge it by, so it stores the priors (COLMAP
+// would read them as metres too) and says loudly what they look like.
+TEST(PosePriorImporter, PositionsLikeDegreesAreWarned) {
+  const Survey& survey = TheSurvey();
+  const fs::path dir = FreshTestDir("uw_pose_prior_importer_test");
+  const fs::path database = FreshDatabase(dir);
+  RewriteTruthNav(
+      dir / "nav.csv", [](std::vector<std::string>* fields, bool header) {
+        if (header) return;
+        std::vector<std::string>& f = *fields;
+        f[3] = std::to_string(
+            5.4 + std::stod(f[3]) / (111320.0 * std::cos(43.1 * M_PI / 180)));
+        f[4] = std::to_string(43.1 + std::stod(f[4]) / 111320.0);
+      });
+  const auto result = Import(
+      database, "--nav" + FileOf(dir / "nav.csv") + " " + survey.camera_flags);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("WARNING: " + (dir / "nav.csv").string() +
+                               ": x and y span only "),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("longitude and latitude in degrees?"),
+            std::string::npos);
 }
 
 TEST(PosePriorImporter, HelpHasAnExample) {
@@ -446,8 +519,14 @@ TEST(PosePriorImporter, BadInputIsRefusedAndTheDatabaseIsUntouched) {
       {nav + " --mount up", "unknown camera mount 'up'"},
       {nav + " --coordinate_system wgs84",
        "--coordinate_system wgs84: only cartesian"},
+      // Every image outside the log: one clock error, with its fix.
       {nav + " --time_offset 1000",
-       "at navigation time 1000 s lies outside the navigation of dive 1"},
+       "nav.csv: 8 of its 8 images lie outside the navigation (the images "
+       "from 1000 to 1008.0775942365677 s on the navigation's clock, with "
+       "--time_offset 1000; "},
+      {nav + " --time_offset 1000",
+       "Is the camera clock off by about -16 min 40 s? --time_offset 0 puts "
+       "the median of those 8 at the navigation's median time"},
   };
   for (const auto& test : cases) {
     const auto result = Import(database, test.flags);

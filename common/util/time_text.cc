@@ -45,4 +45,27 @@ std::string TimeText(double seconds) {
                      utc.tm_hour, utc.tm_min, utc.tm_sec, fraction);
 }
 
+std::string DurationText(double seconds) {
+  if (!std::isfinite(seconds)) return SecondsText(seconds);
+  const double milliseconds = std::round(std::abs(seconds) * 1000.0);
+  const long long whole = static_cast<long long>(milliseconds / 1000.0);
+  const double values[] = {
+      static_cast<double>(whole / 86400),
+      static_cast<double>(whole % 86400 / 3600),
+      static_cast<double>(whole % 3600 / 60),
+      static_cast<double>(whole % 60) +
+          (milliseconds - 1000.0 * static_cast<double>(whole)) / 1000.0};
+  const char* names[] = {"d", "h", "min", "s"};
+  int first = 0;
+  while (first < 3 && values[first] == 0.0) ++first;
+  int last = 3;
+  while (last > first && values[last] == 0.0) --last;
+  std::string text = seconds < 0.0 && milliseconds > 0.0 ? "-" : "";
+  for (int k = first; k <= last; ++k) {
+    text += fmt::format("{}{} {}", k == first ? "" : " ",
+                        SecondsText(values[k]), names[k]);
+  }
+  return text;
+}
+
 }  // namespace uw

@@ -1,5 +1,6 @@
 #include "common/util/time_text.h"
 
+#include <cmath>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -39,6 +40,17 @@ TEST(TimeText, GivesTheCalendarTimeOfAUnixTime) {
   EXPECT_EQ(TimeText(99999999.0), "99999999");
   EXPECT_EQ(TimeText(5e9), "5000000000");
   EXPECT_EQ(TimeText(-1728410000.0), "-1728410000");
+}
+
+TEST(DurationText, ReadsAsAClockErrorIsRead) {
+  EXPECT_EQ(DurationText(5022000.0), "58 d 3 h");
+  EXPECT_EQ(DurationText(7205.0), "2 h 0 min 5 s");
+  EXPECT_EQ(DurationText(12.5), "12.5 s");
+  EXPECT_EQ(DurationText(0.0), "0 s");
+  EXPECT_EQ(DurationText(-86400.25), "-1 d 0 h 0 min 0.25 s");
+  EXPECT_EQ(DurationText(59.9996), "1 min");
+  EXPECT_EQ(DurationText(-0.0001), "0 s");
+  EXPECT_EQ(DurationText(std::nan("")), "nan");
 }
 
 }  // namespace

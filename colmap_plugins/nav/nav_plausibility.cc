@@ -1,0 +1,37 @@
+#include "colmap_plugins/nav/nav_plausibility.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace uw {
+
+std::optional<std::string> DegreesLikePositionsWarning(
+    const std::vector<NavRecord>& nav, const std::string& nav_name) {
+  if (nav.size() < 2) return std::nullopt;
+  Eigen::Vector2d lowest = nav.front().position.head<2>();
+  Eigen::Vector2d highest = lowest;
+  for (const NavRecord& row : nav) {
+    lowest = lowest.cwiseMin(row.position.head<2>());
+    highest = highest.cwiseMax(row.position.head<2>());
+  }
+  const Eigen::Vector2d largest =
+      lowest.cwiseAbs().cwiseMax(highest.cwiseAbs());
+  const bool angles = (largest.x() <= 180.0 && largest.y() <= 90.0) ||
+                      (largest.x() <= 90.0 && largest.y() <= 180.0);
+  const Eigen::Vector2d extent = highest - lowest;
+  const double nearest = (0.5 * (lowest + highest)).cwiseAbs().maxCoeff();
+  if (!angles || extent.maxCoeff() >= 0.01 || nearest < 0.5) {
+    return std::nullopt;
+  }
+  return fmt::format(
+      "{}: x and y span only {:.3g} x {:.3g} around ({:.6f}, {:.6f}): "
+      "longitude and latitude in degrees? nav.csv's x, y, z are metres in a "
+      "local frame (docs/formats.md), and read as metres this survey is "
+      "{:.3g} m across",
+      nav_name, extent.x(), extent.y(), 0.5 * (lowest.x() + highest.x()),
+      0.5 * (lowest.y() + highest.y()), extent.maxCoeff());
+}
+
+}  // namespace uw
