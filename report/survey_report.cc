@@ -23,6 +23,7 @@
 #include "common/util/file.h"
 #include "common/util/html.h"
 #include "common/util/json_fields.h"
+#include "common/util/median.h"
 #include "common/util/plot.h"
 #include "report/survey_map.h"
 
@@ -54,13 +55,6 @@ std::string Figure(const std::string& src, const std::string& alt,
   return "<figure><img src=\"" + HtmlEscape(src) + "\" alt=\"" +
          HtmlEscape(alt) + "\"><figcaption>" + caption +
          "</figcaption></figure>\n";
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return std::nan("");
-  const size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + middle, values.end());
-  return values[middle];
 }
 
 double MeshArea(const TriangleMesh& mesh) {

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "common/util/error.h"
+#include "common/util/median.h"
 
 namespace uw {
 namespace {
@@ -21,12 +22,6 @@ std::vector<double> ObservationDepths(const Reconstruction& model) {
     }
   }
   return depths;
-}
-
-double Median(std::vector<double> values) {
-  const auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 }  // namespace

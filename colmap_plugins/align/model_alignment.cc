@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <utility>
 
 #include <fmt/format.h>
@@ -122,8 +123,13 @@ ModelAlignment AlignByClosestPoints(const Reconstruction& model,
   std::vector<std::pair<double, const Image*>> ordered;
   std::map<std::string, double> times;
   if (!nav.image_times_path.empty()) {
-    const std::vector<ImageTime> image_times =
-        ReadImageTimesCsv(nav.image_times_path);
+    std::set<std::string> names;
+    for (const Image& image : model.Images()) names.insert(image.name);
+    std::vector<ImageTime> image_times;
+    for (const ImageTime& time : ReadImageTimesCsv(nav.image_times_path)) {
+      // Images the mapper dropped may lie anywhere in time.
+      if (names.count(time.image_name) != 0) image_times.push_back(time);
+    }
     // Times only start the association; days off, they would start it at
     // one end of the path and the closest points would do the rest.
     CheckImageClock(ReadNavigationCsv(nav.nav_path), image_times,
@@ -226,7 +232,7 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
     alignment.warnings.push_back(
         "the aligned " + *line +
         ". bundle_adjuster --nav ... --Nav.use_attitude 1 fixes it with the "
-        "log's roll and pitch, when it has them");
+        "log's roll, pitch and heading, when it has them");
   }
   return alignment;
 }

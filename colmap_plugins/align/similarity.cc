@@ -13,6 +13,7 @@
 #include <Eigen/SVD>
 
 #include "common/util/error.h"
+#include "common/util/median.h"
 
 namespace uw {
 namespace {
@@ -240,12 +241,6 @@ std::vector<bool> Inliers(const Problem& problem, const Sim3d& b_from_a,
 }
 
 // The order statistic n/2 (the upper median), LMedS's criterion.
-double Median(std::vector<double> values) {
-  const size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + middle, values.end());
-  return values[middle];
-}
-
 // RANSAC over minimal sets. With a threshold: MSAC (least sum of squared
 // errors truncated at the threshold). Without: least median of squares, whose
 // median then sets the threshold at 2.5 robust σ (Rousseeuw & Leroy 1987,

@@ -164,8 +164,11 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
   if (options.adjuster.use_attitude && !inputs.priors.empty() &&
       !has_rotations) {
     throw ErrorAt("--Nav.use_attitude 1: ", options.priors.PriorsName(),
-                  " gives no camera rotations (a log needs roll, pitch and "
-                  "yaw or heading columns, with their sigmas)");
+                  " gives no camera rotations",
+                  options.priors.HasNavigation()
+                      ? " (a log needs roll, pitch and yaw or heading "
+                        "columns, with their sigmas)"
+                      : " with a covariance");
   }
   Emit(progress,
        fmt::format("Model: {}, {} images, {} points", options.input_path,

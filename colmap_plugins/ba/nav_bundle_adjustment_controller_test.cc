@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "colmap_plugins/ba/nav_inputs.h"
 #include "colmap_plugins/ba/test_scene.h"
 #include "common/util/error.h"
 #include "common/util/error_testing.h"
@@ -342,6 +343,29 @@ TEST(NavBundleAdjustmentController, APositionOnlyLogIsFusedWithoutAttitude) {
       AdjustModelWithNavigation(options, &model);
   EXPECT_EQ(result.num_priors, scene.priors.size());
   EXPECT_LT(test::CameraCenterRmse(model, scene.truth), 0.25);
+}
+
+// A prior from a log without position sigmas still carries its lever arm's
+// circle: --Nav.position_sigma adds the vehicle's share to it, and replaces
+// it only with --Nav.override_sigma 1.
+TEST(NavBundleAdjustmentController, GivenSigmasAddToTheLeverArmsShare) {
+  const test::TestScene scene = SmallScene();
+  CameraPrior prior;
+  prior.image_name = scene.observed.Images().front().name;
+  prior.position_covariance = Eigen::Vector3d(0.2, 0.2, 0.0).asDiagonal();
+  const NavInputs added =
+      NavInputsForModel({prior}, nullptr, scene.observed, 0.3, false);
+  ASSERT_EQ(added.priors.size(), 1u);
+  EXPECT_LT((added.priors[0].position_covariance -
+             Eigen::Matrix3d(Eigen::Vector3d(0.29, 0.29, 0.09).asDiagonal()))
+                .norm(),
+            1e-15);
+  const NavInputs replaced =
+      NavInputsForModel({prior}, nullptr, scene.observed, 0.3, true);
+  EXPECT_LT((replaced.priors[0].position_covariance -
+             0.09 * Eigen::Matrix3d::Identity())
+                .norm(),
+            1e-15);
 }
 
 // A single pass with position priors only: its rotation about the pass is

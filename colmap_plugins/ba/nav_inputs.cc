@@ -26,7 +26,12 @@ Eigen::Matrix3d PositionCovariance(const Eigen::Matrix3d& stated,
                   " has no positive-definite position covariance (a zero "
                   "sigma in the log?); give --Nav.position_sigma");
   }
-  return override_sigma_m * override_sigma_m * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d given =
+      override_sigma_m * override_sigma_m * Eigen::Matrix3d::Identity();
+  // A log without position sigmas still has the lever arm's share (its
+  // circle without yaw, the attitude's through it): kept, the given sigma
+  // standing in for the vehicle's only.
+  return override_all ? given : Eigen::Matrix3d(stated + given);
 }
 
 std::unordered_map<std::string, const Image*> ImagesByName(

@@ -71,9 +71,10 @@ NavInputs LoadNavInputs(const NavInputOptions& options,
                         const std::string& model_name);
 
 // Priors of the model's images. A prior whose position covariance is not
-// positive definite (a zero sigma in the log) takes
-// position_sigma_override_m (> 0) per axis, and so does every prior when
-// override_all is set; otherwise it is an error naming the image.
+// positive definite (a zero sigma in the log, or no sigma columns: then it
+// holds only the lever arm's share) gets position_sigma_override_m (> 0)
+// per axis added; every prior takes that sigma alone when override_all is
+// set; without it, it is an error naming the image.
 // Rig cameras whose rig.json sigmas are 0 get the given ones.
 NavInputs NavInputsForModel(const std::vector<CameraPrior>& priors,
                             const RigConfig* rig, const Reconstruction& model,

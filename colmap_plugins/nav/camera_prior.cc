@@ -9,6 +9,7 @@
 
 #include "colmap_plugins/nav/attitude.h"
 #include "common/util/error.h"
+#include "common/util/median.h"
 #include "common/util/time_text.h"
 
 namespace uw {
@@ -18,12 +19,6 @@ namespace {
 // as inside it: image times written with 17 digits can land a rounding
 // error beyond an extrapolation limit they were computed to meet.
 constexpr double kRelativeTimeSlack = 1e-9;
-
-double Median(std::vector<double> values) {
-  const auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 Eigen::Matrix3d Skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d skew;
@@ -265,23 +260,35 @@ CameraPrior PriorOf(const ImageToPlace& image, int dive,
             .conjugate() *
         -Eigen::Vector3d::UnitZ();
   }
+  Eigen::Vector3d rpy_sigma = vehicle.rpy_sigma;
+  if (!vehicle.has_roll_pitch) {
+    rpy_sigma.head<2>().setConstant(unlogged_roll_pitch_sigma_rad);
+  }
   if (!vehicle.has_yaw) {
     // The lever arm turns with the unknown yaw: only its vertical part is
     // known, its horizontal part h lies anywhere on a circle (variance
-    // |h|²/2 along each horizontal axis).
+    // |h|²/2 along each horizontal axis; a uniform circle, not a Gaussian).
+    // Roll and pitch tilt it on top, by their sigmas (logged, or
+    // unlogged_roll_pitch_sigma): that share, taken at yaw 0, is averaged
+    // over the yaw it could have (its horizontal trace split evenly).
     const Eigen::Vector3d lever_arm_levelled =
         vehicle.world_from_vehicle * vehicle_from_cam.translation;
     prior.position =
         vehicle.position + lever_arm_levelled.z() * Eigen::Vector3d::UnitZ();
-    const double half_h2 = 0.5 * lever_arm_levelled.head<2>().squaredNorm();
+    const Eigen::Matrix3d lever_skew = Skew(lever_arm_levelled);
+    const Eigen::Matrix3d tilt =
+        lever_skew *
+        WorldRotationCovariance(
+            vehicle.rpy, Eigen::Vector3d(rpy_sigma.x(), rpy_sigma.y(), 0.0)) *
+        lever_skew.transpose();
+    const double horizontal = 0.5 * lever_arm_levelled.head<2>().squaredNorm() +
+                              0.5 * (tilt(0, 0) + tilt(1, 1));
     prior.position_covariance =
         position_covariance +
-        Eigen::Vector3d(half_h2, half_h2, 0.0).asDiagonal().toDenseMatrix();
+        Eigen::Vector3d(horizontal, horizontal, tilt(2, 2))
+            .asDiagonal()
+            .toDenseMatrix();
     return prior;
-  }
-  Eigen::Vector3d rpy_sigma = vehicle.rpy_sigma;
-  if (!vehicle.has_roll_pitch) {
-    rpy_sigma.head<2>().setConstant(unlogged_roll_pitch_sigma_rad);
   }
   const Eigen::Matrix3d world_from_vehicle =
       vehicle.world_from_vehicle.toRotationMatrix();

@@ -481,7 +481,9 @@ TEST(CameraPrior, CovariancesMatchMonteCarlo) {
 // A USBL log: positions only. The lever arm's horizontal part (0.6, -0.2)
 // turns with a yaw nobody logged: the camera is placed at the arm's
 // vertical part, the circle's radius² / 2 added along each horizontal axis,
-// and no rotation or gravity is claimed.
+// and the tilt of roll and pitch (5 deg each, unlogged) on top: the
+// vertical 0.3 m swings by 0.3 * 5 deg sideways, the horizontal 0.63 m by
+// 0.63 * 5 deg up and down. No rotation or gravity is claimed.
 TEST(CameraPrior, APositionOnlyLogSpreadsTheLeverArmOverItsCircle) {
   const Motion motion;
   NavRecord row = motion.Row("a.png", 0.0);
@@ -492,8 +494,11 @@ TEST(CameraPrior, APositionOnlyLogSpreadsTheLeverArmOverItsCircle) {
   const CameraPrior prior =
       CameraPriorsFromNavigation({row}, nullptr, SomeCamera())[0];
   EXPECT_EQ(prior.position, row.position + Eigen::Vector3d(0, 0, -0.3));
+  const double tilt2 = std::pow(5.0 * kDegToRad, 2);
   const Eigen::Matrix3d expected =
-      Eigen::Vector3d(0.25 + 0.2, 0.36 + 0.2, 0.0004).asDiagonal();
+      Eigen::Vector3d(0.25 + 0.2 + 0.09 * tilt2, 0.36 + 0.2 + 0.09 * tilt2,
+                      0.0004 + 0.4 * tilt2)
+          .asDiagonal();
   EXPECT_LT((prior.position_covariance - expected).norm(), 1e-15);
   EXPECT_FALSE(prior.cam_from_world_rotation.has_value());
   EXPECT_FALSE(prior.gravity_in_cam.has_value());

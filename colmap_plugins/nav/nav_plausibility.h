@@ -22,4 +22,14 @@ namespace uw {
 std::optional<std::string> DegreesLikePositionsWarning(
     const std::vector<NavRecord>& nav, const std::string& nav_name);
 
+// A warning when the vehicle's median speed between consecutive rows of a
+// dive lies outside [min_speed_mps, max_speed_mps] (defaults 1 mm/s and
+// 10 m/s: ROVs and AUVs survey at 0.1 to 3 m/s). Centimetres or
+// millimetres read as metres give tens to thousands of m/s; a stationary
+// lander or tripod legitimately gives ~0, and is told so.
+std::optional<std::string> SpeedWarning(const std::vector<NavRecord>& nav,
+                                        const std::string& nav_name,
+                                        double min_speed_mps = 1e-3,
+                                        double max_speed_mps = 10.0);
+
 }  // namespace uw

@@ -55,5 +55,36 @@ TEST(DegreesLikePositions, MetricLogsAreNot) {
       {Lawnmower({5.4, 43.1}, 1e5, 1e5).front()}, "n"));
 }
 
+// The lawnmower's rows are 1 s apart and 40 m across: 40 m/s.
+TEST(Speed, UnitsFarOffAreWarned) {
+  // In centimetres read as metres: 100 times a 0.4 m/s survey.
+  std::vector<NavRecord> nav = Lawnmower({0, 0}, 0.01, 0.01);
+  for (size_t k = 0; k < nav.size(); ++k) nav[k].time_s = 100.0 * k;
+  const auto fast = SpeedWarning(nav, "nav.csv");
+  ASSERT_TRUE(fast.has_value());
+  EXPECT_EQ(fast->rfind("nav.csv: the vehicle moves at 40 m/s (median over 39 "
+                        "steps), faster than any survey vehicle (10 m/s)",
+                        0),
+            0u)
+      << *fast;
+  // In metres it is 0.4 m/s: nothing to say.
+  nav = Lawnmower({0, 0});
+  for (size_t k = 0; k < nav.size(); ++k) nav[k].time_s = 100.0 * k;
+  EXPECT_FALSE(SpeedWarning(nav, "nav.csv"));
+  // A lander: it stays put, which is said, not refused.
+  for (NavRecord& row : nav) row.position = Eigen::Vector3d(3, 4, -20);
+  const auto still = SpeedWarning(nav, "nav.csv");
+  ASSERT_TRUE(still.has_value());
+  EXPECT_NE(still->find("moves at 0 m/s (median over 39 steps): a stationary "
+                        "platform"),
+            std::string::npos)
+      << *still;
+  // Steps are taken within a dive only: two dives at one place each.
+  nav[1].dive = 2;
+  nav[1].position = Eigen::Vector3d(1000, 0, 0);
+  EXPECT_NE(SpeedWarning(nav, "nav.csv")->find("median over 38 steps"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace uw

@@ -73,6 +73,9 @@ LoadedCameraPriors LoadCameraPriors(
   if (const auto warning =
           DegreesLikePositionsWarning(nav, options.nav_path.string())) {
     loaded.warnings.push_back(*warning);
+  } else if (const auto speed = SpeedWarning(nav, options.nav_path.string())) {
+    // Degrees crawl at micrometres per second too: said once, above.
+    loaded.warnings.push_back(*speed);
   }
   std::vector<ImageTime> image_times;
   if (!options.image_times_path.empty()) {

@@ -46,24 +46,23 @@ std::string TimeText(double seconds) {
 }
 
 std::string DurationText(double seconds) {
-  if (!std::isfinite(seconds)) return SecondsText(seconds);
-  const double milliseconds = std::round(std::abs(seconds) * 1000.0);
-  const long long whole = static_cast<long long>(milliseconds / 1000.0);
-  const double values[] = {
-      static_cast<double>(whole / 86400),
-      static_cast<double>(whole % 86400 / 3600),
-      static_cast<double>(whole % 3600 / 60),
-      static_cast<double>(whole % 60) +
-          (milliseconds - 1000.0 * static_cast<double>(whole)) / 1000.0};
+  // Past 1e12 s (31 700 years: a clock in ns read as s) units stop helping.
+  if (!(std::abs(seconds) < 1e12)) return SecondsText(seconds) + " s";
+  // Whole milliseconds, so that the seconds print without float noise.
+  const long long ms = std::llround(std::abs(seconds) * 1000.0);
+  const long long units[] = {ms / 86400000, ms % 86400000 / 3600000,
+                             ms % 3600000 / 60000, ms % 60000};
   const char* names[] = {"d", "h", "min", "s"};
   int first = 0;
-  while (first < 3 && values[first] == 0.0) ++first;
+  while (first < 3 && units[first] == 0) ++first;
   int last = 3;
-  while (last > first && values[last] == 0.0) --last;
-  std::string text = seconds < 0.0 && milliseconds > 0.0 ? "-" : "";
+  while (last > first && units[last] == 0) --last;
+  std::string text = seconds < 0.0 && ms > 0 ? "-" : "";
   for (int k = first; k <= last; ++k) {
-    text += fmt::format("{}{} {}", k == first ? "" : " ",
-                        SecondsText(values[k]), names[k]);
+    text += k == first ? "" : " ";
+    text += k == 3 ? SecondsText(static_cast<double>(units[3]) / 1000.0)
+                   : std::to_string(units[k]);
+    text += std::string(" ") + names[k];
   }
   return text;
 }

@@ -24,7 +24,8 @@ std::string TimeText(double seconds);
 // A span of time in the units a person reads a clock error in: "58 d 3 h",
 // "2 h 0 min 5 s", "12.5 s", "-1 d 0 h 0 min 0.25 s" (whole days, hours and
 // minutes, then seconds to the millisecond; zero units after the largest are
-// left out only at the end). Non-finite values as SecondsText.
+// left out only at the end). Past 1e12 s, and for non-finite values,
+// SecondsText and " s".
 std::string DurationText(double seconds);
 
 }  // namespace uw

@@ -50,7 +50,9 @@ TEST(DurationText, ReadsAsAClockErrorIsRead) {
   EXPECT_EQ(DurationText(-86400.25), "-1 d 0 h 0 min 0.25 s");
   EXPECT_EQ(DurationText(59.9996), "1 min");
   EXPECT_EQ(DurationText(-0.0001), "0 s");
-  EXPECT_EQ(DurationText(std::nan("")), "nan");
+  EXPECT_EQ(DurationText(61.118), "1 min 1.118 s");
+  EXPECT_EQ(DurationText(3.5e15), "3500000000000000 s");
+  EXPECT_EQ(DurationText(std::nan("")), "nan s");
 }
 
 }  // namespace
