@@ -1,11 +1,13 @@
 #include "colmap_plugins/align/model_alignment.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <utility>
 
 #include <fmt/format.h>
+#include <Eigen/Cholesky>
 
 #include "colmap_plugins/align/track_metrics.h"
 #include "colmap_plugins/nav/camera_prior.h"
@@ -39,6 +41,16 @@ void ModelAlignmentOptions::Check() const {
   if (associate == ReferenceAssociation::kClosestPoint && !has_nav) {
     throw ErrorAt("--associate closest_point needs --nav");
   }
+  if (associate == ReferenceAssociation::kClosestPoint &&
+      position_sigma_m > 0.0) {
+    throw ErrorAt(
+        "--position_sigma applies to references paired by name, not to "
+        "--associate closest_point");
+  }
+  if (!(position_sigma_m >= 0.0 && std::isfinite(position_sigma_m))) {
+    throw ErrorAt("--position_sigma ", position_sigma_m,
+                  ": expected a finite sigma >= 0 (m)");
+  }
   if (min_common_images < 3) {
     throw ErrorAt("--min_common_images ", min_common_images,
                   ": a similarity needs at least 3");
@@ -46,6 +58,29 @@ void ModelAlignmentOptions::Check() const {
   similarity.Check();
   plausibility.Check();
 }
+
+namespace {
+
+// References without a usable covariance get sigma² per axis on top of what
+// they hold (a log without position sigmas still has its lever arm's
+// share), as bundle_adjuster's --Nav.position_sigma does.
+std::vector<ReferencePosition> WithPositionSigma(
+    std::vector<ReferencePosition> references, double sigma_m) {
+  if (!(sigma_m > 0.0)) return references;
+  for (ReferencePosition& reference : references) {
+    const Eigen::Matrix3d stated =
+        reference.covariance.value_or(Eigen::Matrix3d::Zero());
+    if (reference.covariance &&
+        Eigen::LLT<Eigen::Matrix3d>(stated).info() == Eigen::Success) {
+      continue;
+    }
+    reference.covariance = Eigen::Matrix3d(
+        stated + sigma_m * sigma_m * Eigen::Matrix3d::Identity());
+  }
+  return references;
+}
+
+}  // namespace
 
 NavigationReferenceSet NavigationReferences(
     const PosePriorImportOptions& options, const Reconstruction& model) {
@@ -186,21 +221,27 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
   if (options.associate == ReferenceAssociation::kClosestPoint) {
     alignment = AlignByClosestPoints(model, options.nav, options.similarity);
   } else if (!options.ref_images_path.empty()) {
-    alignment =
-        AlignByName(model, ReadReferencePositions(options.ref_images_path),
-                    options.ref_images_path, options.similarity);
+    alignment = AlignByName(
+        model,
+        WithPositionSigma(ReadReferencePositions(options.ref_images_path),
+                          options.position_sigma_m),
+        options.ref_images_path, options.similarity);
   } else if (!options.database_path.empty()) {
     const Database database =
         Database::Open(options.database_path, Database::Mode::kReadOnly);
-    alignment = AlignByName(model, ReferencePositionsFromDatabase(database),
-                            options.database_path + " (pose priors)",
-                            options.similarity);
+    alignment = AlignByName(
+        model,
+        WithPositionSigma(ReferencePositionsFromDatabase(database),
+                          options.position_sigma_m),
+        options.database_path + " (pose priors)", options.similarity);
   } else {
     const NavigationReferenceSet navigation =
         NavigationReferences(options.nav, model);
     log_warnings = navigation.warnings;
-    alignment = AlignByName(model, navigation.references,
-                            options.nav.nav_path.string(), options.similarity);
+    alignment = AlignByName(
+        model,
+        WithPositionSigma(navigation.references, options.position_sigma_m),
+        options.nav.nav_path.string(), options.similarity);
     alignment.num_references += navigation.other_images.size();
     alignment.unknown_names = navigation.other_images;
   }

@@ -39,12 +39,17 @@ struct ModelAlignmentOptions {
   // Robust (RANSAC + Huber) with an automatic threshold, with scale.
   SimilarityOptions similarity;
   int min_common_images = 3;  // images with a reference, at least
+  // Sigma (m, per axis) of references without a usable covariance
+  // (ref_images.txt, a log without position sigmas), added to what they
+  // have (a log's lever arm share), by name only; 0: such references
+  // leave the fit unweighted.
+  double position_sigma_m = 0.0;
   // What the similarity must look like (--min_range, --max_range,
   // --accept_implausible).
   AlignmentPlausibilityOptions plausibility;
 
   // One source, closest points on the navigation only, at least 3 common
-  // images, the similarity's own rules.
+  // images, a finite position sigma >= 0, the similarity's own rules.
   void Check() const;
 };
 

@@ -200,5 +200,44 @@ TEST(ModelAlignment, TooFewCommonImagesIsAnError) {
           "6");
 }
 
+// References without covariances (ref_images.txt) are weighted by
+// --position_sigma, and the plausibility checks then see their noise: a
+// log whose 3 m noise rivals this 6 m survey is noisy, not wrong.
+TEST(ModelAlignment, PositionSigmaWeightsReferencesWithoutCovariances) {
+  const fs::path dir = testing::FreshTestDir("uw_model_alignment_sigma");
+  const std::vector<Eigen::Vector3d> centres = {
+      {0, 0, 0},   {1, 0, 0},       {2, 0.5, 0},   {3, 0, 0.2},
+      {1.5, 2, 0}, {0.5, 1.5, 0.1}, {2.5, 1.8, 0}, {3, 1, 0.1}};
+  const Reconstruction model = ImagesAt(centres);
+  // Each reference 3 m per axis off (1.5 model units, scaled by
+  // ReferenceOf), in a fixed pattern.
+  std::vector<Eigen::Vector3d> noisy;
+  for (size_t k = 0; k < centres.size(); ++k) {
+    noisy.push_back(centres[k] + 1.5 * Eigen::Vector3d(k % 2 == 0 ? 1 : -1,
+                                                       k % 3 == 0 ? -1 : 1,
+                                                       k % 4 < 2 ? 1 : -1));
+  }
+  ModelAlignmentOptions options;
+  options.ref_images_path = WriteReferences(dir, noisy);
+  options.similarity.robust = false;
+  const std::string refused = ErrorOf([&] { AlignModel(options, model); });
+  EXPECT_NE(refused.find("Or is the positions' noise, which they do not "
+                         "state, as large as the survey?"),
+            std::string::npos)
+      << refused;
+  options.position_sigma_m = 3.0;
+  const ModelAlignment alignment = AlignModel(options, model);
+  EXPECT_TRUE(alignment.covariance_weighted);
+  ASSERT_TRUE(alignment.plausibility.sigma_ratio.has_value());
+  EXPECT_LT(*alignment.plausibility.sigma_ratio, 3.0);
+  EXPECT_TRUE(alignment.warnings.empty());
+  options.associate = ReferenceAssociation::kClosestPoint;
+  options.ref_images_path.clear();
+  options.nav.nav_path = "nav.csv";
+  ExpectErrorContaining([&] { options.Check(); },
+                        "--position_sigma applies to references paired by "
+                        "name");
+}
+
 }  // namespace
 }  // namespace uw

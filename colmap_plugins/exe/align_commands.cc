@@ -49,6 +49,10 @@ void AddModelAlignerFlags(CommandLine* cli, ModelAlignerOptions* options) {
            "0: rigid transform (scale 1), for a model already in metres");
   cli->Add("--min_common_images", &alignment.min_common_images,
            "Fewest images with a reference to align (>= 3)");
+  cli->Add("--position_sigma", &alignment.position_sigma_m,
+           "Sigma (m, per axis) of references without a usable covariance "
+           "(ref_images.txt, a log without position sigmas); they then "
+           "weight the fit and the plausibility checks see them (by name)");
   AddPlausibilityFlags(cli, &alignment.plausibility, "--");
   cli->Add<ReferenceAssociation>(
       "--associate", &alignment.associate,
