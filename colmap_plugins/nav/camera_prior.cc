@@ -234,6 +234,19 @@ class Navigation {
   std::map<int, Dive> dives_;
 };
 
+// The images of image_times.csv at their navigation times.
+std::vector<ImageToPlace> ImagesAtTheirTimes(
+    const std::vector<ImageTime>& image_times,
+    const NavToCameraOptions& options, const NavigationSources& sources) {
+  std::vector<ImageToPlace> images;
+  for (const ImageTime& image : image_times) {
+    images.push_back({image.image_name, image.time_s + options.time_offset_s,
+                      image.dive,
+                      sources.image_times + ":" + std::to_string(image.line)});
+  }
+  return images;
+}
+
 Rigid3d Compose(const Rigid3d& c_from_b, const Rigid3d& b_from_a) {
   Rigid3d c_from_a;
   c_from_a.rotation = c_from_b.rotation * b_from_a.rotation;
@@ -324,11 +337,7 @@ std::vector<CameraPrior> CameraPriorsFromNavigation(
 
   std::vector<ImageToPlace> images;
   if (image_times != nullptr) {
-    for (const ImageTime& image : *image_times) {
-      images.push_back(
-          {image.image_name, image.time_s + options.time_offset_s, image.dive,
-           sources.image_times + ":" + std::to_string(image.line)});
-    }
+    images = ImagesAtTheirTimes(*image_times, options, sources);
   } else {
     for (const NavRecord& row : nav) {
       const std::string where = sources.nav + ":" + std::to_string(row.line);
@@ -379,14 +388,9 @@ void CheckImageClock(const std::vector<NavRecord>& nav,
                      const NavToCameraOptions& options,
                      const NavigationSources& sources) {
   if (nav.empty()) throw ErrorAt(sources.nav, ": no navigation rows");
-  std::vector<ImageToPlace> images;
-  for (const ImageTime& image : image_times) {
-    images.push_back({image.image_name, image.time_s + options.time_offset_s,
-                      image.dive,
-                      sources.image_times + ":" + std::to_string(image.line)});
-  }
   Navigation(nav, sources.nav)
-      .CheckClock(images, options.time_offset_s, sources.image_times);
+      .CheckClock(ImagesAtTheirTimes(image_times, options, sources),
+                  options.time_offset_s, sources.image_times);
 }
 
 std::vector<ImageTime> RigImageTimes(const std::vector<NavRecord>& nav,
