@@ -521,24 +521,27 @@ void Adjustment::Build(
   std::vector<PoseBlock>& poses = poses_;
   std::map<int, Eigen::Vector3d>& offsets = dive_offsets_;
 
-  for (size_t i = 0; i < images.size(); ++i) {
-    const Image& image = images[i];
-    const Camera& camera =
-        reconstruction_->Cameras()[camera_index_.at(image.camera_id)];
-    double* params = camera_params_[camera_index_.at(image.camera_id)].data();
-    for (const Point2D& point2D : image.points2D) {
-      if (!point2D.HasPoint3D()) continue;
+  // Point by point: Ceres looks every block of a residual up in a map
+  // keyed by address, and the residuals of one point after another keep
+  // that lookup in cache (image by image, it took 3.7 s at 2000 images).
+  for (const Point3D& point : reconstruction_->Points3D()) {
+    double* xyz = points_.at(point.point3D_id).data();
+    for (const TrackElement& element : point.track) {
+      const size_t i = image_index_.at(element.image_id);
+      const Image& image = images[i];
+      const size_t c = camera_index_.at(image.camera_id);
       ceres::CostFunction* cost = VisitCameraModel(
-          camera.model_id, [&](auto tag) -> ceres::CostFunction* {
+          reconstruction_->Cameras()[c].model_id,
+          [&](auto tag) -> ceres::CostFunction* {
             using Model = typename decltype(tag)::type;
             return ReprojectionErrorCostFunctor<Model>::Create(
-                point2D.xy, weights.reprojection);
+                image.points2D[element.point2D_idx].xy, weights.reprojection);
           });
       record("reprojection",
              problem->AddResidualBlock(
                  cost, MakeLoss(options_.loss, weights.reprojection_loss_scale),
-                 poses[i].rotation, poses[i].translation,
-                 points_.at(point2D.point3D_id).data(), params));
+                 poses[i].rotation, poses[i].translation, xyz,
+                 camera_params_[c].data()));
     }
   }
 

@@ -48,8 +48,7 @@ double Seconds(Clock::time_point since) {
 
 // A column of the Jacobian: which variable and which of its coordinates.
 struct ColumnOwner {
-  int reduced = -1;  // reduced variable, or -1
-  int point = -1;    // point, or -1
+  int reduced = -1;  // reduced variable, or -1 for a point's
   int local = 0;     // coordinate within the variable (full tangent)
   int kept = -1;     // index in S (reduced coordinates not held), or -1
 };
@@ -297,7 +296,7 @@ class Computation {
         CheckFinite(block, reduced_[a].name);
         const int size = problem_->ParameterBlockTangentSize(block);
         for (int k = 0; k < size; ++k) {
-          owners_.push_back({static_cast<int>(a), -1, reduced_dim_[a] + k});
+          owners_.push_back({static_cast<int>(a), reduced_dim_[a] + k});
         }
         reduced_dim_[a] += size;
         column += size;
@@ -318,7 +317,7 @@ class Computation {
       }
       CheckFinite(block, points_[j].name);
       for (int k = 0; k < 3; ++k) {
-        owners_.push_back({-1, static_cast<int>(j), k});
+        owners_.push_back({-1, k});
       }
       blocks_.push_back(block);
     }
@@ -482,19 +481,24 @@ class Computation {
   // The point Jacobian row r sees (its entries at point columns), or -1.
   int RowPoint(int r) const {
     int point = -1;
-    for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
-      const ColumnOwner& owner = owners_[jacobian_.cols[e]];
-      if (owner.point < 0) continue;
-      if (point >= 0 && owner.point != point) {
+    for (int e = point_entries_begin_[r]; e < jacobian_.rows[r + 1]; ++e) {
+      const int on_point = PointOfColumn(jacobian_.cols[e]);
+      if (point >= 0 && on_point != point) {
         throw ErrorAt("a residual couples ", points_[point].name, " and ",
-                      points_[owner.point].name,
+                      points_[on_point].name,
                       "; points must be independent given the reduced "
                       "variables");
       }
-      point = owner.point;
+      point = on_point;
     }
     return point;
   }
+
+  // Points' columns follow the reduced ones, three each (ListColumns); the
+  // owner is computed rather than read, since owners_ is mostly points' and
+  // far larger than the cache.
+  int PointOfColumn(int c) const { return (c - num_reduced_columns_) / 3; }
+  int PointCoordinate(int c) const { return (c - num_reduced_columns_) % 3; }
 
   // The reduced variables with kept coordinates that point j's rows see,
   // ascending, into *vars (through a held coordinate too: its B_j block is
@@ -503,9 +507,9 @@ class Computation {
     vars->clear();
     for (int x = point_row_begin_[j]; x < point_row_begin_[j + 1]; ++x) {
       const int r = point_rows_[x];
-      for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
+      for (int e = jacobian_.rows[r]; e < point_entries_begin_[r]; ++e) {
         const ColumnOwner& owner = owners_[jacobian_.cols[e]];
-        if (owner.reduced >= 0 && kept_dim_[owner.reduced] > 0) {
+        if (kept_dim_[owner.reduced] > 0) {
           vars->push_back(owner.reduced);
         }
       }
@@ -522,6 +526,8 @@ class Computation {
     // A variable's columns are contiguous (ListColumns), so its entries are
     // contiguous in a row whose columns ascend, as Ceres writes them; the
     // row scans below rely on it.
+    // The reduced variables' entries of a row come first, then its point's.
+    point_entries_begin_.resize(jacobian_.num_rows);
     for (int r = 0; r < jacobian_.num_rows; ++r) {
       for (int e = jacobian_.rows[r] + 1; e < jacobian_.rows[r + 1]; ++e) {
         if (jacobian_.cols[e] <= jacobian_.cols[e - 1]) {
@@ -529,6 +535,12 @@ class Computation {
                         " has columns out of order");
         }
       }
+      int e = jacobian_.rows[r];
+      while (e < jacobian_.rows[r + 1] &&
+             jacobian_.cols[e] < num_reduced_columns_) {
+        ++e;
+      }
+      point_entries_begin_[r] = e;
     }
     const int num_points = static_cast<int>(points_.size());
     std::vector<int> row_point(jacobian_.num_rows);
@@ -605,7 +617,7 @@ class Computation {
   template <typename F>
   void ForEachRowVariable(int r, F&& f) const {
     int last = -1;
-    for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
+    for (int e = jacobian_.rows[r]; e < point_entries_begin_[r]; ++e) {
       const ColumnOwner& owner = owners_[jacobian_.cols[e]];
       if (owner.kept >= 0 && owner.reduced != last) {
         last = owner.reduced;
@@ -634,9 +646,8 @@ class Computation {
   // Row r's entries at its point's columns.
   Eigen::Vector3d OnPoint(int r) const {
     Eigen::Vector3d on_point = Eigen::Vector3d::Zero();
-    for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
-      const ColumnOwner& owner = owners_[jacobian_.cols[e]];
-      if (owner.point >= 0) on_point(owner.local) = jacobian_.values[e];
+    for (int e = point_entries_begin_[r]; e < jacobian_.rows[r + 1]; ++e) {
+      on_point(PointCoordinate(jacobian_.cols[e])) = jacobian_.values[e];
     }
     return on_point;
   }
@@ -656,7 +667,7 @@ class Computation {
     for (int x = point_row_begin_[j]; x < point_row_begin_[j + 1]; ++x) {
       const int r = point_rows_[x];
       const Eigen::Vector3d on_point = OnPoint(r);
-      for (int e = jacobian_.rows[r]; e < jacobian_.rows[r + 1]; ++e) {
+      for (int e = jacobian_.rows[r]; e < point_entries_begin_[r]; ++e) {
         const ColumnOwner& owner = owners_[jacobian_.cols[e]];
         if (owner.kept < 0) continue;
         Coupling(*FindCoupling(j, owner.reduced))
@@ -754,7 +765,7 @@ class Computation {
 
     for (int x = variable_row_begin_[b]; x < variable_row_begin_[b + 1]; ++x) {
       const int r = variable_rows_[x];
-      const int end = jacobian_.rows[r + 1];
+      const int end = point_entries_begin_[r];
       // b's entries are contiguous in the row: [b_begin, b_end).
       int b_begin = jacobian_.rows[r];
       while (owners_[jacobian_.cols[b_begin]].reduced != b) ++b_begin;
@@ -776,29 +787,48 @@ class Computation {
         }
       }
     }
-    Eigen::MatrixXd c_b(3, kept_b);  // C_j^-1 B_b^T
+    if (kept_b == 6) {
+      // A pose, most of the columns: fixed sizes let Eigen unroll.
+      SubtractPointTerms<6>(b, *slot, &column);
+    } else {
+      SubtractPointTerms<Eigen::Dynamic>(b, *slot, &column);
+    }
+    for (const int a : column.rows) (*slot)[a] = -1;
+  }
+
+  // Column b's blocks (a, b), a >= b, minus sum_j B_aj C_j^-1 B_bj^T over
+  // the points j that b sees; kCols is b's kept dimension when fixed.
+  template <int kCols>
+  void SubtractPointTerms(int b, const std::vector<int>& slot,
+                          ReducedColumn* column) const {
+    const int kept_b = kept_dim_[b];
+    Eigen::Matrix<double, 3, kCols> c_b(3, kept_b);  // C_j^-1 B_bj^T
     for (size_t x = variable_coupling_begin_[b];
          x < variable_coupling_begin_[b + 1]; ++x) {
       const PointCoupling& on_b = couplings_[variable_couplings_[x]];
       const int j = on_b.point;
-      c_b.noalias() = point_inverse_[j] * Coupling(on_b).transpose();
+      c_b.noalias() = point_inverse_[j] *
+                      Eigen::Map<const Eigen::Matrix<double, kCols, 3>>(
+                          coupling_pool_.data() + on_b.offset, kept_b, 3)
+                          .transpose();
       for (size_t y = coupling_begin_[j]; y < coupling_begin_[j + 1]; ++y) {
         const int a = couplings_[y].reduced;
         if (a < b) continue;
-        double* block = column.values.data() + column.offsets[(*slot)[a]];
+        double* block = column->values.data() + column->offsets[slot[a]];
         const double* coupling = coupling_pool_.data() + couplings_[y].offset;
-        if (kept_dim_[a] == 6 && kept_b == 6) {
-          // Two poses, most of the pairs: fixed sizes let Eigen unroll.
-          Eigen::Map<Eigen::Matrix<double, 6, 6>>(block).noalias() -=
-              Eigen::Map<const Eigen::Matrix<double, 6, 3>>(coupling) *
-              Eigen::Map<const Eigen::Matrix<double, 3, 6>>(c_b.data());
+        if (kCols == 6 && kept_dim_[a] == 6) {
+          Eigen::Map<Eigen::Matrix<double, 6, kCols>>(block, 6, kept_b)
+              .noalias() -=
+              Eigen::Map<const Eigen::Matrix<double, 6, 3>>(coupling) * c_b;
         } else {
-          Block(column, (*slot)[a], kept_dim_[a], kept_b).noalias() -=
-              Coupling(couplings_[y]).lazyProduct(c_b);
+          Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, kCols>>(
+              block, kept_dim_[a], kept_b)
+              .noalias() -=
+              Eigen::Map<const PointBlock>(coupling, kept_dim_[a], 3)
+                  .lazyProduct(c_b);
         }
       }
     }
-    for (const int a : column.rows) (*slot)[a] = -1;
   }
 
   static Eigen::Map<Eigen::MatrixXd> Block(ReducedColumn& column, int k,
@@ -1197,6 +1227,8 @@ class Computation {
   int gauge_dimension_ = 0;
   Eigen::MatrixXd null_basis_;  // orthonormal, Jacobian column order
 
+  // Per Jacobian row, where its point's entries begin.
+  std::vector<int> point_entries_begin_;
   // Jacobian rows by point and by reduced variable (CSR, ascending).
   std::vector<int> point_row_begin_;
   std::vector<int> point_rows_;
