@@ -4,6 +4,7 @@
 // covariance_speed_bench.cc (large observed surveys).
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -21,6 +22,10 @@ struct Run {
   ProcessTimes process;
   double solve_s = 0.0;
   int iterations = 0;
+  // RMS reprojection error per observation (px), at the input and at the
+  // end: a speed ratio means nothing if one stops at a worse optimum.
+  double initial_rms_px = 0.0;
+  double final_rms_px = 0.0;
 };
 
 inline std::string ReadText(const std::filesystem::path& path) {
@@ -30,7 +35,10 @@ inline std::string ReadText(const std::filesystem::path& path) {
   return text.str();
 }
 
-// colmap's "Bundle adjustment report": "Iterations : N", "Time : S [s]".
+// colmap's "Bundle adjustment report": "Iterations : N", "Time : S [s]",
+// "Initial cost : C0 [px]", "Final cost : C [px]", where C is
+// sqrt(Ceres cost / residuals) = sqrt(0.5 sum |r|^2 / (2 observations)):
+// half the RMS error per observation.
 inline Run ColmapRun(const std::filesystem::path& input,
                      const std::filesystem::path& dir) {
   std::filesystem::remove_all(dir);
@@ -43,11 +51,15 @@ inline Run ColmapRun(const std::filesystem::path& input,
   std::smatch match;
   if (!std::regex_search(
           log, match,
-          std::regex(R"(Iterations : (\d+)\s+Time : ([0-9.e+-]+))"))) {
+          std::regex(R"(Iterations : (\d+)\s+Time : ([0-9.e+-]+) \[s\]\s+)"
+                     R"(Initial cost : ([0-9.e+-]+) \[px\]\s+)"
+                     R"(Final cost : ([0-9.e+-]+) \[px\])"))) {
     throw std::runtime_error("no report in " + (dir / "log.txt").string());
   }
   run.iterations = std::stoi(match[1]);
   run.solve_s = std::stod(match[2]);
+  run.initial_rms_px = 2.0 * std::stod(match[3]);
+  run.final_rms_px = 2.0 * std::stod(match[4]);
   return run;
 }
 
@@ -65,6 +77,13 @@ inline Run OursRun(const std::string& uwcolmap,
       nlohmann::json::parse(ReadText(dir / "ba_report.json"));
   run.iterations = report.at("iterations").get<int>();
   run.solve_s = report.at("solve_time_s").get<double>();
+  // Mean squared reprojection error per observation (px^2).
+  const auto rms = [&](const char* key) {
+    return std::sqrt(
+        report.at(key).at("reprojection").at("mean_squared").get<double>());
+  };
+  run.initial_rms_px = rms("initial_cost");
+  run.final_rms_px = rms("final_cost");
   return run;
 }
 

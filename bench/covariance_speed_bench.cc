@@ -320,12 +320,16 @@ int Main(int argc, char** argv) {
         nlohmann::json json = TimesJson(run.process);
         json["solve_s"] = run.solve_s;
         json["iterations"] = run.iterations;
+        json["initial_rms_px"] = run.initial_rms_px;
+        json["final_rms_px"] = run.final_rms_px;
         return json;
       };
       record["colmap_bundle_adjuster"] = ba_json(colmap);
       record["ours_bundle_adjuster"] = ba_json(ours);
       record["ratio_ba_ours_over_colmap_wall"] =
           ours.process.wall_s / colmap.process.wall_s;
+      record["ratio_ba_ours_over_colmap_final_rms"] =
+          ours.final_rms_px / colmap.final_rms_px;
       // colmap 3.8 sets Ceres' tolerances to 0: it always runs its 100
       // iterations, ours stops at convergence; per iteration compares the
       // work of one step.
@@ -334,11 +338,12 @@ int Main(int argc, char** argv) {
           (colmap.solve_s / std::max(1, colmap.iterations));
       std::printf(
           "[covariance_speed_bench] %d images: bundle_adjuster colmap %.1f s "
-          "(%d iterations, peak %.0f MB), ours %.1f s (%d iterations, peak "
-          "%.0f MB)\n",
+          "(%d iterations, peak %.0f MB, RMS %.6f px), ours %.1f s (%d "
+          "iterations, peak %.0f MB, RMS %.6f px), from %.6f px\n",
           num_images, colmap.process.wall_s, colmap.iterations,
-          colmap.process.max_rss_mb, ours.process.wall_s, ours.iterations,
-          ours.process.max_rss_mb);
+          colmap.process.max_rss_mb, colmap.final_rms_px, ours.process.wall_s,
+          ours.iterations, ours.process.max_rss_mb, ours.final_rms_px,
+          ours.initial_rms_px);
       std::fflush(stdout);
     }
     records.push_back(record);
