@@ -9,6 +9,7 @@
 
 #include "calib/corners_vnl.h"
 #include "common/util/error.h"
+#include "common/util/number_text.h"
 
 namespace uw {
 namespace {
@@ -25,18 +26,12 @@ std::vector<std::string> SplitAt(const std::string& text, char separator) {
 // Parses all of `text` as a number, or throws naming the board spec.
 double ParseNumber(const std::string& text, const std::string& spec,
                    const char* what) {
-  size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(value)) {
+  const std::optional<double> value = FiniteDouble(text);
+  if (!value) {
     throw ErrorAt("--board ", spec, ": ", what, " must be a number, got '",
                   text, "'");
   }
-  return value;
+  return *value;
 }
 
 int ParseCount(const std::string& text, const std::string& spec,

@@ -26,6 +26,8 @@ packages=(
   libeigen3-dev libceres-dev libsqlite3-dev sqlite3 libcli11-dev
   libopencv-dev libgtest-dev libembree-dev libtbb-dev nlohmann-json3-dev
   libfmt-dev
+  # GeographicLib: lat/lon, UTM and heading in navigation logs (LocalCartesian)
+  libgeographiclib-dev
   # mrcal 2.2: the C library uwcalib calibrates with, and its tools
   # (mrcal-calibrate-cameras, run by /usr/bin/python3) and chessboard finder
   # (mrgingham) that tests compare with

@@ -97,12 +97,15 @@ NavigationReferenceSet NavigationReferences(
   }
   set.other_images = loaded.other_images;
   set.warnings = loaded.warnings;
+  set.frame = loaded.frame;
   return set;
 }
 
-TimedPath NavigationPath(const PosePriorImportOptions& options) {
+TimedPath NavigationPath(const PosePriorImportOptions& options,
+                         NavLogFrame* frame) {
   const std::string nav_path = options.nav_path.string();
-  const std::vector<NavRecord> nav = ReadNavigationCsv(nav_path);
+  const std::vector<NavRecord> nav =
+      ReadNavigationLog(nav_path, options.log, frame);
   std::vector<ImageTime> samples;
   for (const NavRecord& row : nav) {
     samples.push_back({nav_path + ":" + std::to_string(row.line), row.time_s,
@@ -153,7 +156,8 @@ ModelAlignment AlignByClosestPoints(const Reconstruction& model,
         "--associate closest_point: --rig_config is not supported; "
         "associate the images of one camera");
   }
-  const TimedPath path = NavigationPath(nav);
+  NavLogFrame frame;
+  const TimedPath path = NavigationPath(nav, &frame);
   // Image order: by time when the times are known, else by name.
   std::vector<std::pair<double, const Image*>> ordered;
   std::map<std::string, double> times;
@@ -167,7 +171,7 @@ ModelAlignment AlignByClosestPoints(const Reconstruction& model,
     }
     // Times only start the association; days off, they would start it at
     // one end of the path and the closest points would do the rest.
-    CheckImageClock(ReadNavigationCsv(nav.nav_path), image_times,
+    CheckImageClock(ReadNavigationLog(nav.nav_path, nav.log), image_times,
                     nav.nav_to_camera,
                     {nav.nav_path.string(), nav.image_times_path.string()});
     for (const ImageTime& time : image_times) {
@@ -191,6 +195,7 @@ ModelAlignment AlignByClosestPoints(const Reconstruction& model,
   alignment.reference = nav.nav_path.string() + " (path of " +
                         std::to_string(path.positions.size()) + " samples)";
   alignment.association = ReferenceAssociation::kClosestPoint;
+  alignment.world_frame = WorldFrameText(frame);
   alignment.num_references = path.positions.size();
   alignment.covariance_weighted = !path.covariances.empty();
   std::vector<Eigen::Vector3d> centres;
@@ -244,6 +249,7 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
         options.nav.nav_path.string(), options.similarity);
     alignment.num_references += navigation.other_images.size();
     alignment.unknown_names = navigation.other_images;
+    alignment.world_frame = WorldFrameText(navigation.frame);
   }
   if (alignment.image_names.size() <
       static_cast<size_t>(options.min_common_images)) {
@@ -312,6 +318,7 @@ nlohmann::json ModelAlignmentJson(const ModelAlignment& alignment) {
       {"rms_m", similarity.rms_m},
       {"plausibility", PlausibilityJson(alignment.plausibility)},
       {"warnings", alignment.warnings},
+      {"world_frame", alignment.world_frame},
       {"images", images}};
   if (alignment.association == ReferenceAssociation::kClosestPoint) {
     json["iterations"] = alignment.iterations;
@@ -324,6 +331,9 @@ std::string FormatModelAlignment(const ModelAlignment& alignment) {
   const SimilarityResult& similarity = alignment.similarity;
   const Sim3d& sim3 = similarity.b_from_a;
   std::string text = fmt::format("Reference: {}\n", alignment.reference);
+  if (!alignment.world_frame.empty()) {
+    text += fmt::format("World frame: {}\n", alignment.world_frame);
+  }
   if (alignment.association == ReferenceAssociation::kName) {
     text +=
         fmt::format("Images with a reference position: {} (of {} positions)\n",

@@ -67,6 +67,9 @@ struct ModelAlignment {
   int iterations = 0;                      // closest_point only
   bool converged = true;
   AlignmentPlausibility plausibility;
+  // The frame of the references from a navigation log (WorldFrameText);
+  // empty for ref_images.txt and database priors, whose frame is theirs.
+  std::string world_frame;
   // What the user must know about the result (centres on one line).
   std::vector<std::string> warnings;
 };
@@ -79,13 +82,16 @@ struct NavigationReferenceSet {
   std::vector<ReferencePosition> references;
   std::vector<std::string> other_images;
   std::vector<std::string> warnings;  // LoadedCameraPriors::warnings
+  NavLogFrame frame;
 };
 NavigationReferenceSet NavigationReferences(
     const PosePriorImportOptions& options, const Reconstruction& model);
 
 // The navigation as a path of camera centres at the log's own times (with
-// the covariances when every one is positive definite).
-TimedPath NavigationPath(const PosePriorImportOptions& options);
+// the covariances when every one is positive definite), and the frame the
+// log was read into.
+TimedPath NavigationPath(const PosePriorImportOptions& options,
+                         NavLogFrame* frame);
 
 // The similarity from the model's camera centres to the references of the
 // same name (`source` names them in messages and the report).

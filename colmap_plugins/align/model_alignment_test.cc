@@ -116,6 +116,9 @@ TEST(ModelAlignment, NavigationRowsOfOtherImagesAreNoError) {
 
   const ModelAlignment alignment = AlignModel(options, model);
   EXPECT_EQ(alignment.reference, options.nav.nav_path.string());
+  EXPECT_EQ(alignment.world_frame, "the log's x,y,z (m)");
+  EXPECT_EQ(ModelAlignmentJson(alignment)["world_frame"],
+            "the log's x,y,z (m)");
   EXPECT_EQ(alignment.image_names.size(), 5u);
   EXPECT_EQ(alignment.num_references, 6u);
   EXPECT_EQ(alignment.unknown_names,
@@ -130,7 +133,8 @@ TEST(ModelAlignment, NavigationRowsOfOtherImagesAreNoError) {
   }
 
   const std::string text = FormatModelAlignment(alignment);
-  EXPECT_EQ(text.rfind(fmt::format("Reference: {}\nImages with a reference "
+  EXPECT_EQ(text.rfind(fmt::format("Reference: {}\nWorld frame: the log's "
+                                   "x,y,z (m)\nImages with a reference "
                                    "position: 5 (of 6 positions)\nReference "
                                    "positions of no model image: 1 (e.g. "
                                    "unregistered.png)\nWeighting: by the "

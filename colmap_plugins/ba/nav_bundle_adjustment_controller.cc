@@ -178,6 +178,9 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
          fmt::format("Priors: {} images ({} rows of images not in the "
                      "model, left out)",
                      inputs.priors.size(), inputs.num_priors_without_image));
+    if (!inputs.world_frame.empty()) {
+      Emit(progress, "World frame: " + inputs.world_frame);
+    }
   }
   return AdjustModelWithNavigation(options, inputs, model, progress);
 }
@@ -190,6 +193,7 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
   const SoftRig* rig = inputs.rig ? &*inputs.rig : nullptr;
   NavBundleAdjustmentResult result;
   result.num_priors = inputs.priors.size();
+  result.world_frame = inputs.world_frame;
   std::vector<std::string> alignment_warnings = inputs.warnings;
   const auto start = std::chrono::steady_clock::now();
   if (options.strategy == NavStrategy::kPrior && !inputs.priors.empty()) {
@@ -316,7 +320,8 @@ nlohmann::json NavBundleAdjustmentJson(
       {"nav", nav.nav_path.string()},
       {"database_path", options.priors.database_path},
       {"camera_on_vehicle", DescribeNavToCamera(nav.nav_to_camera)},
-      {"rig_config", nav.rig_config_path.string()}};
+      {"rig_config", nav.rig_config_path.string()},
+      {"world_frame", result.world_frame}};
   if (result.noise_levels) {
     context["noise_levels"] = NoiseLevelsJson(*result.noise_levels);
   }

@@ -341,6 +341,10 @@ TEST(NavBundleAdjustmentController, APositionOnlyLogIsFusedWithoutAttitude) {
   options.adjuster.use_attitude = false;
   const NavBundleAdjustmentResult result =
       AdjustModelWithNavigation(options, &model);
+  EXPECT_EQ(result.world_frame, "the log's x,y,z (m)");
+  EXPECT_EQ(
+      NavBundleAdjustmentJson(options, result, model)["run"]["world_frame"],
+      "the log's x,y,z (m)");
   EXPECT_EQ(result.num_priors, scene.priors.size());
   EXPECT_LT(test::CameraCenterRmse(model, scene.truth), 0.25);
 }
@@ -417,7 +421,8 @@ TEST(NavBundleAdjustmentController, LoadsThePriorsOfTheNavigation) {
   std::vector<std::string> lines;
   const NavBundleAdjustmentResult result =
       AdjustModelWithNavigation(options, &model, Into(&lines));
-  ASSERT_EQ(lines.size(), 2u);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[2], "World frame: the log's x,y,z (m)");
   EXPECT_EQ(lines[1],
             "Priors: 16 images (0 rows of images not in the model, left out)");
   EXPECT_EQ(result.num_priors, 16u);
@@ -432,7 +437,8 @@ TEST(NavBundleAdjustmentController, LoadsThePriorsOfTheNavigation) {
   EXPECT_EQ(
       AdjustModelWithNavigation(options, &with_stray, Into(&lines)).num_priors,
       16u);
-  ASSERT_EQ(lines.size(), 2u);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[2], "World frame: the log's x,y,z (m)");
   EXPECT_EQ(lines[1],
             "Priors: 16 images (1 rows of images not in the model, left out)");
 
@@ -483,7 +489,8 @@ TEST(NavBundleAdjustmentController, ImageTimesOfUnregisteredImagesAreLeftOut) {
   std::vector<std::string> lines;
   EXPECT_EQ(AdjustModelWithNavigation(options, &model, Into(&lines)).num_priors,
             16u);
-  ASSERT_EQ(lines.size(), 2u);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[2], "World frame: the log's x,y,z (m)");
   EXPECT_EQ(lines[1],
             "Priors: 16 images (1 rows of images not in the model, left out)");
   EXPECT_LT(test::CameraCenterRmse(model, scene.truth), 0.25);

@@ -95,6 +95,7 @@ NavInputs LoadNavInputs(const NavInputOptions& options,
     }
     inputs.num_priors_without_image += loaded.other_images.size();
     inputs.warnings = loaded.warnings;
+    inputs.world_frame = WorldFrameText(loaded.frame);
     return inputs;
   }
   if (!options.database_path.empty()) {

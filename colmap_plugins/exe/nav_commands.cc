@@ -18,6 +18,7 @@ void PrintSummary(const std::string& database_path,
             << "Navigation: " << options.nav_path.string() << ", "
             << summary.num_nav_rows << " rows, " << summary.num_dives
             << (summary.num_dives == 1 ? " dive\n" : " dives\n")
+            << "World frame: " << WorldFrameText(summary.frame) << "\n"
             << "Image times: "
             << (options.image_times_path.empty()
                     ? (summary.num_rig_cameras > 0
@@ -74,8 +75,8 @@ void AddPosePriorImporterFlags(CommandLine* cli,
       ->required();
   AddNavFlags(cli, &options->import, true, "--rig_config");
   cli->Add("--coordinate_system", &options->coordinate_system,
-           "Frame of the log's x,y,z: cartesian (a local metric frame such as "
-           "East-North-Up)");
+           "Frame of the positions written: cartesian (the log's x,y,z, or a "
+           "geographic log's local east-north-up at --origin)");
 }
 
 void RunPosePriorImporter(const PosePriorImporterOptions& options) {
@@ -89,7 +90,8 @@ void RunPosePriorImporter(const PosePriorImporterOptions& options) {
 void PosePriorImporterOptions::Check() const {
   if (coordinate_system != "cartesian") {
     throw ErrorAt("--coordinate_system ", coordinate_system,
-                  ": only cartesian logs (x,y,z in metres) are supported");
+                  ": the priors are written in a local metric frame "
+                  "(cartesian); a geographic log is read into one (--origin)");
   }
   import.Check();
 }

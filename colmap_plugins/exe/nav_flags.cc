@@ -6,9 +6,10 @@ void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
                  bool nav_required, const std::string& rig_flag) {
   CLI::Option* nav = cli->Add(
       "--nav", &options->nav_path,
-      "Navigation log (nav.csv: time and vehicle position x,y,z in m; "
-      "optionally roll,pitch and yaw or heading in deg, and their sigmas; "
-      "docs/formats.md)");
+      "Navigation log (nav.csv: time and vehicle position x,y,z in m, "
+      "lat,lon,depth|alt in WGS84 deg and m, or UTM easting,northing,zone,"
+      "depth|alt; optionally roll,pitch and yaw or heading in deg, and their "
+      "sigmas; docs/formats.md)");
   if (nav_required) nav->required();
   cli->Add("--image_times", &options->image_times_path,
            "image_name,time of every image (image_times.csv); the log is "
@@ -29,6 +30,25 @@ void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
   cli->Add("--time_offset", &nav_to_camera.time_offset_s,
            "Seconds added to every image time to get the navigation time at "
            "which it was taken");
+  cli->Add<std::optional<GeoOrigin>>(
+      "--origin", &options->log.origin,
+      "lat,lon[,height] (deg, m) of the local east-north-up frame a "
+      "geographic log (lat,lon or UTM) is read into; default: its first fix "
+      "rounded to 0.001 deg, printed",
+      [](const std::string& text) {
+        return std::optional<GeoOrigin>(GeoOriginFromText(text, "--origin"));
+      },
+      [](const std::optional<GeoOrigin>& origin) {
+        return origin ? GeoOriginText(*origin) : std::string("automatic");
+      });
+  cli->Add<NavLogFormat>(
+      "--nav_format", &options->log.format,
+      "Format of --nav: csv (nav.csv), nmea (NMEA 0183: GGA fixes, HDT "
+      "headings, RMC/ZDA dates) or auto (nmea when its first line is a "
+      "sentence)",
+      NavLogFormatFromName, NavLogFormatName);
+  cli->Add("--nmea_date", &options->log.nmea.date,
+           "UTC date YYYY-MM-DD of an NMEA log without RMC or ZDA sentences");
   cli->Add("--unlogged_roll_pitch_sigma",
            &nav_to_camera.unlogged_roll_pitch_sigma_deg,
            "Sigma (deg) of the roll and pitch a log with heading but no roll "

@@ -5,6 +5,8 @@
 #include <map>
 #include <unordered_map>
 
+#include <GeographicLib/UTMUPS.hpp>
+
 #include "common/util/csv.h"
 #include "common/util/error.h"
 #include "common/util/time_text.h"
@@ -12,6 +14,53 @@
 namespace uw {
 
 namespace {
+
+enum class PositionColumns { kCartesian, kLatLon, kUtm };
+
+// The one set of position columns the header has, named in the frame.
+PositionColumns ChoosePositionColumns(const CsvTable& table,
+                                      NavLogFrame* frame) {
+  const std::string file = table.Path().string() + ":1: ";
+  const auto has = [&](const char* name) { return table.HasColumn(name); };
+  const int sets = (has("x") || has("y") || has("z")) +
+                   (has("lat") || has("lon")) +
+                   (has("easting") || has("northing") || has("zone"));
+  const bool complete = (has("x") && has("y") && has("z")) ||
+                        (has("lat") && has("lon")) ||
+                        (has("easting") && has("northing") && has("zone"));
+  const bool vertical = has("depth") || has("alt");
+  const bool geographic = !has("x") && !has("y") && !has("z");
+  if (sets != 1 || !complete || (geographic && !vertical) ||
+      (!geographic && vertical) || (has("depth") && has("alt"))) {
+    throw ErrorAt(
+        file,
+        "the positions are one of x,y,z (m) | lat,lon,depth | "
+        "lat,lon,alt (WGS84 deg, m) | easting,northing,zone,depth | "
+        "easting,northing,zone,alt (UTM m, zone as 31n); the "
+        "header has ",
+        [&] {
+          std::string names;
+          for (const char* name : {"x", "y", "z", "lat", "lon", "easting",
+                                   "northing", "zone", "depth", "alt"}) {
+            if (has(name)) {
+              names += (names.empty() ? "" : ",") + std::string(name);
+            }
+          }
+          return names.empty() ? std::string("none") : names;
+        }());
+  }
+  const std::string height = has("depth") ? "depth" : "alt";
+  if (has("x")) {
+    frame->position_columns = "x,y,z";
+    return PositionColumns::kCartesian;
+  }
+  if (has("lat")) {
+    frame->position_columns = "lat,lon," + height;
+    return PositionColumns::kLatLon;
+  }
+  frame->position_columns = "easting,northing,zone," + height;
+  return PositionColumns::kUtm;
+}
 
 // Columns that come together or not at all, and columns that need another:
 // a header breaking either rule is refused before any row is read.
@@ -55,16 +104,65 @@ void CheckColumnSets(const CsvTable& table) {
 
 }  // namespace
 
-std::vector<NavRecord> ReadNavigationCsv(const std::filesystem::path& path) {
+std::vector<NavRecord> ReadNavigationCsv(const std::filesystem::path& path,
+                                         const std::optional<GeoOrigin>& origin,
+                                         NavLogFrame* frame) {
   const std::vector<std::string> columns = {
-      "image_name", "time",     "dive",      "x",       "y",          "z",
-      "roll",       "pitch",    "yaw",       "heading", "std_x",      "std_y",
-      "std_z",      "std_roll", "std_pitch", "std_yaw", "std_heading"};
-  const CsvTable table = CsvTable::Read(path, columns, {"time", "x", "y", "z"});
+      "image_name", "time",  "dive",     "x",         "y",       "z",
+      "lat",        "lon",   "depth",    "alt",       "easting", "northing",
+      "zone",       "roll",  "pitch",    "yaw",       "heading", "std_x",
+      "std_y",      "std_z", "std_roll", "std_pitch", "std_yaw", "std_heading"};
+  const CsvTable table = CsvTable::Read(path, columns, {"time"});
+  NavLogFrame read_frame;
+  const PositionColumns position_columns =
+      ChoosePositionColumns(table, &read_frame);
+  CheckColumnSets(table);
   if (table.NumRows() == 0) {
     throw ErrorAt(path.string(), ": no navigation rows");
   }
-  CheckColumnSets(table);
+  const bool geographic = position_columns != PositionColumns::kCartesian;
+  if (origin && !geographic) {
+    throw ErrorAt(path.string(),
+                  ": an origin is for a geographic log (lat/lon or UTM); this "
+                  "one has x,y,z in metres already");
+  }
+  const std::string height_column = table.HasColumn("depth") ? "depth" : "alt";
+  const double height_sign = table.HasColumn("depth") ? -1.0 : 1.0;
+  // The fix of a row of a geographic log: lat, lon (deg), height (m).
+  const auto fix_of = [&](size_t row) {
+    const double height = height_sign * table.Double(row, height_column);
+    if (position_columns == PositionColumns::kLatLon) {
+      const double lat = table.Double(row, "lat");
+      const double lon = table.Double(row, "lon");
+      if (std::abs(lat) > 90.0 || lon < -180.0 || lon >= 360.0) {
+        throw ErrorAt(table.Where(row), ": lat ", lat, ", lon ", lon,
+                      " is not a position in degrees (lat within [-90, 90], "
+                      "lon within [-180, 360))");
+      }
+      return Eigen::Vector3d(lat, lon, height);
+    }
+    int zone = 0;
+    bool north = true;
+    ParseUtmZone(table.Text(row, "zone"), table.Where(row), &zone, &north);
+    Eigen::Vector3d fix(0.0, 0.0, height);
+    try {
+      GeographicLib::UTMUPS::Reverse(zone, north, table.Double(row, "easting"),
+                                     table.Double(row, "northing"), fix(0),
+                                     fix(1));
+    } catch (const std::exception& error) {
+      throw ErrorAt(table.Where(row), ": easting, northing not in zone ",
+                    table.Text(row, "zone"), " (", error.what(), ")");
+    }
+    return fix;
+  };
+  std::optional<LocalEnu> local;
+  if (geographic) {
+    const Eigen::Vector3d first = fix_of(0);
+    read_frame.origin = origin ? *origin : AutomaticOrigin(first(0), first(1));
+    read_frame.origin_automatic = !origin;
+    local.emplace(*read_frame.origin);
+  }
+  if (frame != nullptr) *frame = read_frame;
   const bool has_names = table.HasColumn("image_name");
   const bool has_dives = table.HasColumn("dive");
   const bool has_roll_pitch = table.HasColumn("roll");
@@ -94,25 +192,37 @@ std::vector<NavRecord> ReadNavigationCsv(const std::filesystem::path& path) {
     if (has_dives) record.dive = table.Int(row, "dive", 1);
     record.has_roll_pitch = has_roll_pitch;
     record.has_yaw = has_yaw;
+    Eigen::Vector3d fix = Eigen::Vector3d::Zero();
+    if (geographic) {
+      fix = fix_of(row);
+      record.position = local->FromGeodetic(fix(0), fix(1), fix(2));
+    }
     for (int k = 0; k < 3; ++k) {
-      record.position(k) = table.Double(row, columns[3 + k]);
+      if (!geographic) {
+        record.position(k) = table.Double(row, std::string(1, "xyz"[k]));
+      }
       if (has_position_sigma) {
         record.position_sigma(k) =
-            table.NonNegativeDouble(row, columns[10 + k]);
+            table.NonNegativeDouble(row, "std_" + std::string(1, "xyz"[k]));
       }
     }
     for (int k = 0; k < 2 && has_roll_pitch; ++k) {
-      record.rpy_rad(k) = table.Double(row, columns[6 + k]) * kDegToRad;
+      const std::string angle = k == 0 ? "roll" : "pitch";
+      record.rpy_rad(k) = table.Double(row, angle) * kDegToRad;
       if (has_roll_pitch_sigma) {
         record.rpy_sigma_rad(k) =
-            table.NonNegativeDouble(row, columns[13 + k]) * kDegToRad;
+            table.NonNegativeDouble(row, "std_" + angle) * kDegToRad;
       }
     }
     if (has_yaw) {
       // Heading turns clockwise from north (the y axis); yaw
-      // counter-clockwise from east (x).
-      const double yaw_deg = has_heading ? 90.0 - table.Double(row, yaw_column)
-                                         : table.Double(row, yaw_column);
+      // counter-clockwise from east (x). A geographic log's are at the fix.
+      const double value = table.Double(row, yaw_column);
+      double yaw_deg = has_heading ? 90.0 - value : value;
+      if (geographic) {
+        yaw_deg = local->YawFromHeading(has_heading ? value : 90.0 - value,
+                                        fix(0), fix(1), fix(2));
+      }
       record.rpy_rad(2) = yaw_deg * kDegToRad;
       if (has_yaw_sigma) {
         record.rpy_sigma_rad(2) =

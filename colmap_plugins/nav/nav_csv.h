@@ -3,10 +3,13 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "colmap_plugins/nav/geodesy.h"
 
 namespace uw {
 
@@ -29,14 +32,40 @@ struct NavRecord {
   int line = 0;  // 1-based line in the file, for messages
 };
 
-// Reads nav.csv strictly: the header names the columns time, x, y, z and
-// optionally image_name, dive, roll and pitch (together), yaw or heading
-// (clockwise from north: yaw = 90 - heading), and the sigmas std_x, std_y,
-// std_z (together), std_roll, std_pitch (with roll, pitch) and std_yaw or
-// std_heading (with yaw or heading), in any order; every value is a finite
-// number, dives are integers >= 1, sigmas >= 0, image names are non-empty
-// and unique, and within a dive the rows come in strictly increasing time.
-// Sigmas not given read 0. Throws uw::Error naming the file and line.
-std::vector<NavRecord> ReadNavigationCsv(const std::filesystem::path& path);
+// The frame a log's positions were read into.
+struct NavLogFrame {
+  // "x,y,z", "lat,lon,depth", "lat,lon,alt", "easting,northing,zone,depth",
+  // "easting,northing,zone,alt" or "NMEA GGA".
+  std::string position_columns;
+  // A geographic log's records are in the local east-north-up frame (m)
+  // at this origin: the one given, or AutomaticOrigin of its first row.
+  std::optional<GeoOrigin> origin;
+  bool origin_automatic = false;
+  // What the reader left out and the user should hear of (NMEA fixes
+  // without a fix, ...), each naming the file.
+  std::vector<std::string> notes;
+};
+
+// Reads nav.csv strictly: the header names the column time, one set of
+// position columns, and optionally image_name, dive, roll and pitch
+// (together), yaw or heading (clockwise from north: yaw = 90 - heading),
+// and the sigmas std_x, std_y, std_z (together; east, north, up for a
+// geographic log), std_roll, std_pitch (with roll, pitch) and std_yaw or
+// std_heading (with yaw or heading), in any order. The position sets:
+//   x,y,z                 metres, the world frame (z up)
+//   lat,lon,depth | alt   WGS84 degrees; depth in m below, alt in m above
+//                         the log's vertical datum
+//   easting,northing,zone,depth | alt   UTM metres, zone as 31n or 31s
+// A geographic log is read into LocalEnu at `origin` (AutomaticOrigin of
+// its first row when not given); its heading or yaw is taken at each fix
+// (LocalEnu::YawFromHeading). `origin` with an x,y,z log is an error.
+// Every value is a finite number, dives are integers >= 1, sigmas >= 0,
+// image names are non-empty and unique, and within a dive the rows come in
+// strictly increasing time. Sigmas not given read 0. Throws uw::Error
+// naming the file and line. `frame`, when given, receives the frame.
+std::vector<NavRecord> ReadNavigationCsv(
+    const std::filesystem::path& path,
+    const std::optional<GeoOrigin>& origin = std::nullopt,
+    NavLogFrame* frame = nullptr);
 
 }  // namespace uw

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
 #include "common/util/error.h"
+#include "common/util/error_testing.h"
 #include "tests/support/text_file_reader_test.h"
 
 namespace uw {
@@ -21,7 +23,9 @@ const std::string kHeader =
 class NavCsvTest : public TextFileReaderTest<std::vector<NavRecord>> {
  protected:
   NavCsvTest()
-      : TextFileReaderTest("uw_nav_csv_test", "nav.csv", ReadNavigationCsv) {}
+      : TextFileReaderTest(
+            "uw_nav_csv_test", "nav.csv",
+            [](const fs::path& path) { return ReadNavigationCsv(path); }) {}
 };
 
 // A row of uwsim's nav.csv: angles in degrees become radians.
@@ -143,6 +147,61 @@ TEST_F(NavCsvTest, ColumnsThatComeTogetherAreChecked) {
   }
 }
 
+// A USBL's WGS84 fixes: metres east, north and up of the origin, heading at
+// each fix. Without an origin, the first fix rounded to 1e-3 deg is used and
+// said; an origin for an x,y,z log is refused.
+TEST_F(NavCsvTest, GeographicLogsAreReadIntoTheLocalFrame) {
+  const std::string text =
+      "time,lat,lon,depth,heading,std_x,std_y,std_z\n"
+      "1,43.12345,5.45678,12.5,30,0.5,0.5,0.1\n"
+      "2,43.12355,5.45688,13.0,31,0.5,0.5,0.1\n";
+  const GeoOrigin origin{43.1234, 5.4567, 0.0};
+  std::ofstream(path_, std::ios::binary) << text;
+  NavLogFrame frame;
+  const std::vector<NavRecord> nav = ReadNavigationCsv(path_, origin, &frame);
+  ASSERT_EQ(nav.size(), 2u);
+  const LocalEnu local(origin);
+  EXPECT_LT(
+      (nav[1].position - local.FromGeodetic(43.12355, 5.45688, -13.0)).norm(),
+      1e-9);
+  EXPECT_NEAR(nav[1].rpy_rad(2),
+              local.YawFromHeading(31.0, 43.12355, 5.45688, -13.0) * kDegToRad,
+              1e-12);
+  EXPECT_EQ(nav[1].position_sigma, Eigen::Vector3d(0.5, 0.5, 0.1));
+  EXPECT_FALSE(nav[1].has_roll_pitch);
+  EXPECT_EQ(frame.position_columns, "lat,lon,depth");
+  EXPECT_FALSE(frame.origin_automatic);
+
+  const std::vector<NavRecord> automatic =
+      ReadNavigationCsv(path_, std::nullopt, &frame);
+  ASSERT_TRUE(frame.origin);
+  EXPECT_TRUE(frame.origin_automatic);
+  EXPECT_NEAR(frame.origin->lat_deg, 43.123, 1e-12);
+  EXPECT_NEAR(frame.origin->lon_deg, 5.457, 1e-12);
+  // Another origin moves the log, not its shape.
+  EXPECT_NEAR((automatic[1].position - automatic[0].position).norm(),
+              (nav[1].position - nav[0].position).norm(), 1e-9);
+
+  std::ofstream(path_, std::ios::binary) << "time,x,y,z\n1,0,0,0\n";
+  ExpectErrorContaining([&] { ReadNavigationCsv(path_, origin); },
+                        "an origin is for a geographic log");
+}
+
+// The same fixes as UTM (zone 31, north) and as lat,lon,alt.
+TEST_F(NavCsvTest, UtmAndAltitudeLogsAreTheSameFixes) {
+  const GeoOrigin origin{0.5, 3.0, 0.0};
+  std::ofstream(path_, std::ios::binary)
+      << "time,easting,northing,zone,alt\n1,500000,0,31N,-4\n";
+  const std::vector<NavRecord> utm = ReadNavigationCsv(path_, origin);
+  std::ofstream(path_, std::ios::binary) << "time,lat,lon,alt\n1,0,3,-4\n";
+  const std::vector<NavRecord> lat_lon = ReadNavigationCsv(path_, origin);
+  EXPECT_LT((utm[0].position - lat_lon[0].position).norm(), 1e-6);
+  // 0.5 deg south on the tangent plane: the meridian's radius at the
+  // equator, a (1 - e^2), times sin(0.5 deg).
+  EXPECT_NEAR(utm[0].position.y(), -6335439.327 * std::sin(0.5 * kDegToRad),
+              0.1);
+}
+
 TEST_F(NavCsvTest, BadRowsNameFileAndLine) {
   const std::string good = "a.png,0,1,4,2,3,0,0,0,1,1,0.02,0.05,0.05,0.2\n";
   const std::string where = path_.string() + ":";
@@ -178,7 +237,17 @@ TEST_F(NavCsvTest, BadRowsNameFileAndLine) {
        where + "3: time 1728410000.25 (2024-10-08T17:53:20.25Z) s is not "
                "after the previous row of dive 1 (line 2, 1728410000.25 "
                "(2024-10-08T17:53:20.25Z) s)"},
-      {"image_name,time,x,y\n", where + "1: expected the header "},
+      {"image_name,time,x,y\n", where + "1: the positions are one of x,y,z"},
+      {"time,x,y,z,lat,lon,depth\n1,0,0,0,43,5,10\n",
+       where + "1: the positions are one of x,y,z"},
+      {"time,lat,lon\n1,43,5\n", where + "1: the positions are one of"},
+      {"time,x,y,z,depth\n1,0,0,0,10\n", where + "1: the positions are one of"},
+      {"time,lat,lon,depth,alt\n1,43,5,1,1\n",
+       where + "1: the positions are one of"},
+      {"time,lat,lon,depth\n1,43,5,1\n2,95,5,1\n",
+       where + "3: lat 95, lon 5 is not a position in degrees"},
+      {"time,easting,northing,zone,alt\n1,500000,0,31n,0\n2,500000,0,31U,0\n",
+       where + "3: zone '31U' is not a UTM zone with its hemisphere"},
       {"# no header\n" + good, where + "2: expected the header"},
       {kHeader, path_.string() + ": no navigation rows"},
       {"", path_.string() + ": no header row"},

@@ -4,6 +4,7 @@
 #include <set>
 #include <unordered_map>
 
+#include <fmt/format.h>
 #include <Eigen/Eigenvalues>
 
 #include "colmap_plugins/nav/image_times.h"
@@ -36,6 +37,7 @@ std::string CameraIds(const std::vector<DatabaseCamera>& cameras) {
 void PosePriorImportOptions::Check() const {
   if (nav_path.empty()) throw ErrorAt("no navigation file given");
   nav_to_camera.Check();
+  log.Check();
 }
 
 PosePrior DatabasePosePrior(const CameraPrior& prior, uint32_t image_id) {
@@ -60,6 +62,22 @@ PosePrior DatabasePosePrior(const CameraPrior& prior, uint32_t image_id) {
   return database_prior;
 }
 
+std::string WorldFrameText(const NavLogFrame& frame) {
+  if (!frame.origin) {
+    return "the log's x,y,z (m)";
+  }
+  std::string text = "local east-north-up (m) at " +
+                     GeoOriginText(*frame.origin) + " (lat,lon,height; the " +
+                     frame.position_columns + " of the log)";
+  if (frame.origin_automatic) {
+    text += fmt::format(
+        "; automatic, its first fix rounded: --origin {:.3f},{:.3f} gives "
+        "later commands the same frame",
+        frame.origin->lat_deg, frame.origin->lon_deg);
+  }
+  return text;
+}
+
 LoadedCameraPriors LoadCameraPriors(
     const PosePriorImportOptions& options,
     const std::vector<std::pair<std::string, camera_t>>& images,
@@ -68,7 +86,10 @@ LoadedCameraPriors LoadCameraPriors(
   LoadedCameraPriors loaded;
   NavigationSources sources;
   sources.nav = options.nav_path.string();
-  loaded.nav = ReadNavigationCsv(options.nav_path);
+  loaded.nav = ReadNavigationLog(options.nav_path, options.log, &loaded.frame);
+  for (const std::string& note : loaded.frame.notes) {
+    loaded.warnings.push_back(note);
+  }
   const std::vector<NavRecord>& nav = loaded.nav;
   if (const auto warning =
           DegreesLikePositionsWarning(nav, options.nav_path.string())) {
@@ -239,6 +260,7 @@ PosePriorImportSummary ImportPosePriors(
       summary.num_database_images - summary.num_priors;
   summary.other_images = loaded.other_images;
   summary.warnings = loaded.warnings;
+  summary.frame = loaded.frame;
   summary.written = database.WritePosePriors(database_priors);
   return summary;
 }

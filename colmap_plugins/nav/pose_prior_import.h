@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "colmap_plugins/nav/camera_mount.h"
 #include "colmap_plugins/nav/camera_prior.h"
 #include "colmap_plugins/nav/nav_csv.h"
+#include "colmap_plugins/nav/nav_log.h"
 #include "colmap_plugins/nav/rig_config.h"
 #include "colmap_plugins/scene/database.h"
 
@@ -23,9 +25,16 @@ struct PosePriorImportOptions {
   std::filesystem::path image_times_path;  // empty: none
   std::filesystem::path rig_config_path;   // empty: none
   NavToCameraOptions nav_to_camera;
+  // The log's format, a geographic log's origin, an NMEA log's date.
+  NavLogOptions log;
 
   void Check() const;
 };
+
+// "World frame: ..." for a command's summary: the log's x,y,z, or a
+// geographic log's local east-north-up at its origin (with the --origin
+// that reuses an automatic one).
+std::string WorldFrameText(const NavLogFrame& frame);
 
 struct PosePriorImportSummary {
   DatabaseSchema schema = DatabaseSchema::kColmap38;
@@ -47,6 +56,8 @@ struct PosePriorImportSummary {
   size_t num_singular_covariances = 0;
   // What the log alone shows to be suspect (nav_plausibility.h).
   std::vector<std::string> warnings;
+  // The frame the priors are in.
+  NavLogFrame frame;
   PosePriorWriteSummary written;
 };
 
@@ -70,6 +81,7 @@ PosePrior DatabasePosePrior(const CameraPrior& prior, uint32_t image_id);
 // and for an image whose camera is not the rig camera of its prefix.
 struct LoadedCameraPriors {
   std::vector<NavRecord> nav;
+  NavLogFrame frame;
   RigConfig rig;  // no cameras: no rig
   std::vector<CameraPrior> priors;
   // The images of the rows left out, in file order.

@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
@@ -423,6 +424,65 @@ TEST(PosePriorImporter, PositionsLikeDegreesAreWarned) {
             std::string::npos);
 }
 
+// The same degrees named lat,lon,alt: read into the local east-north-up
+// frame at --origin (or at the first fix, rounded and said), metres apart
+// as the true log's positions (the degrees above were made with a round
+// 111 320 m per degree, 0.2 % off WGS84's at 43 deg).
+TEST(PosePriorImporter, AGeographicLogIsReadAtItsOrigin) {
+  const Survey& survey = TheSurvey();
+  const fs::path dir = FreshTestDir("uw_pose_prior_importer_test");
+  RewriteTruthNav(
+      dir / "nav.csv", [](std::vector<std::string>* fields, bool header) {
+        std::vector<std::string>& f = *fields;
+        if (header) {
+          f[3] = "lon";
+          f[4] = "lat";
+          f[5] = "alt";
+          return;
+        }
+        f[3] = fmt::format(
+            "{:.12f}",
+            5.4 + std::stod(f[3]) / (111320.0 * std::cos(43.1 * M_PI / 180)));
+        f[4] = fmt::format("{:.12f}", 43.1 + std::stod(f[4]) / 111320.0);
+      });
+  for (const char* sub : {"local", "o", "a"}) fs::create_directories(dir / sub);
+  const fs::path local_database = FreshDatabase(dir / "local");
+  ASSERT_EQ(Import(local_database,
+                   "--nav" + FileOf(survey.sim / "truth" / "nav.csv") + " " +
+                       survey.camera_flags)
+                .exit_code,
+            0);
+  const auto truth = StoredPriors(local_database);
+  for (const std::string origin : {"--origin 43.1,5.4", ""}) {
+    const fs::path database = FreshDatabase(dir / (origin.empty() ? "a" : "o"));
+    const auto result =
+        Import(database, "--nav" + FileOf(dir / "nav.csv") + " " + origin +
+                             " " + survey.camera_flags);
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_NE(result.output.find("World frame: local east-north-up (m) at "
+                                 "43.100000000,5.400000000,0.0000 "
+                                 "(lat,lon,height; the lat,lon,alt of the log"),
+              std::string::npos)
+        << result.output;
+    EXPECT_EQ(result.output.find("automatic") == std::string::npos,
+              !origin.empty())
+        << result.output;
+    EXPECT_EQ(result.output.find("WARNING"), std::string::npos)
+        << result.output;
+    const auto stored = StoredPriors(database);
+    ASSERT_EQ(stored.size(), truth.size());
+    const StoredPrior& first = stored.begin()->second;
+    const StoredPrior& true_first = truth.begin()->second;
+    for (const auto& [name, prior] : stored) {
+      const double distance = (prior.position - first.position).norm();
+      const double true_distance =
+          (truth.at(name).position - true_first.position).norm();
+      EXPECT_NEAR(distance, true_distance, 0.005 * true_distance + 1e-6)
+          << name;
+    }
+  }
+}
+
 TEST(PosePriorImporter, HelpHasAnExample) {
   const auto result =
       RunProcess(kUwcolmap.string() + " pose_prior_importer --help", true);
@@ -517,8 +577,24 @@ TEST(PosePriorImporter, BadInputIsRefusedAndTheDatabaseIsUntouched) {
        "other.csv: none of its 1 rows names an image of the database"},
       {nav + " --lever_arm 1,2", "--lever_arm: expected three numbers x,y,z"},
       {nav + " --mount up", "unknown camera mount 'up'"},
+      {nav + " --origin 95,5", "--origin: origin latitude 95 deg lies outside"},
+      {nav + " --nav_format xml",
+       "unknown navigation log format 'xml' (auto, csv, nmea)"},
+      {nav + " --nmea_date 2024-13-01",
+       "--nmea_date 2024-13-01 is not a date YYYY-MM-DD"},
+      // An NMEA log is recognised by its first line; this one has no date.
+      {" --nav" +
+           write("nav.nmea",
+                 "$GPGGA,120001.00,4306.0000,N,00524.0000,E,1,08,0.9,"
+                 "0,M,,M,,\n") +
+           times,
+       "nav.nmea: no RMC or ZDA sentence gives the date of its GGA fixes"},
+      {nav + " --origin 43.1", "--origin: '43.1' is not lat,lon"},
+      {nav + " --origin 43.1,5.4",
+       "nav.csv: an origin is for a geographic log (lat/lon or UTM); this one "
+       "has x,y,z"},
       {nav + " --coordinate_system wgs84",
-       "--coordinate_system wgs84: only cartesian"},
+       "--coordinate_system wgs84: the priors are written in a local metric"},
       // Every image outside the log: one clock error, with its fix.
       {nav + " --time_offset 1000",
        "nav.csv: 8 of its 8 images lie outside the navigation (the images "

@@ -7,6 +7,7 @@
 
 #include "common/util/error.h"
 #include "common/util/file.h"
+#include "common/util/number_text.h"
 
 namespace uw {
 
@@ -241,16 +242,12 @@ double CsvTable::Double(size_t row, const std::string& column) const {
   const std::string& field = Text(row, column);
   // Without the padding a quoted export may give a number (" 12.5 "): a
   // name keeps its padding (it is text), a number does not need it.
-  const std::string_view text = Trim(field);
-  double value = 0.0;
-  const auto [end, error] =
-      std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc() ||
-      end != text.data() + text.size() || !std::isfinite(value)) {
+  const std::optional<double> value = FiniteDouble(Trim(field));
+  if (!value) {
     throw ErrorAt(Where(row), ": ", column, " must be a finite number, got '",
                   field, "'");
   }
-  return value;
+  return *value;
 }
 
 std::optional<double> CsvTable::Number(size_t row,

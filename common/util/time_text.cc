@@ -67,4 +67,22 @@ std::string DurationText(double seconds) {
   return text;
 }
 
+std::optional<double> UnixTimeOfDay(int year, int month, int day) {
+  if (year < 1900 || year > 9999 || month < 1 || month > 12 || day < 1 ||
+      day > 31) {
+    return std::nullopt;
+  }
+  std::tm utc{};
+  utc.tm_year = year - 1900;
+  utc.tm_mon = month - 1;
+  utc.tm_mday = day;
+  const std::time_t time = timegm(&utc);
+  // timegm normalises: 2024-02-30 comes back as March 1st.
+  if (utc.tm_year != year - 1900 || utc.tm_mon != month - 1 ||
+      utc.tm_mday != day) {
+    return std::nullopt;
+  }
+  return static_cast<double>(time);
+}
+
 }  // namespace uw

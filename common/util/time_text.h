@@ -4,6 +4,7 @@
 // clock days off shows in the message itself.
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace uw {
@@ -27,5 +28,10 @@ std::string TimeText(double seconds);
 // left out only at the end). Past 1e12 s, and for non-finite values,
 // SecondsText and " s".
 std::string DurationText(double seconds);
+
+// Seconds from 1970-01-01T00:00Z to 00:00Z of a UTC calendar day, or
+// nullopt for a day that does not exist (2024-02-30, month 13) or lies
+// outside 1900 to 9999.
+std::optional<double> UnixTimeOfDay(int year, int month, int day);
 
 }  // namespace uw

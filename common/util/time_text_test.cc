@@ -55,5 +55,18 @@ TEST(DurationText, ReadsAsAClockErrorIsRead) {
   EXPECT_EQ(DurationText(std::nan("")), "nan s");
 }
 
+TEST(UnixTimeOfDay, CountsDaysFromTheEpoch) {
+  EXPECT_EQ(UnixTimeOfDay(1970, 1, 1), 0.0);
+  EXPECT_EQ(UnixTimeOfDay(2024, 10, 8), 1728345600.0);
+  EXPECT_EQ(UnixTimeOfDay(2000, 2, 29), 951782400.0);
+  EXPECT_EQ(*UnixTimeOfDay(2024, 3, 1) - *UnixTimeOfDay(2024, 2, 28),
+            2 * 86400.0);
+  EXPECT_FALSE(UnixTimeOfDay(2023, 2, 29));
+  EXPECT_FALSE(UnixTimeOfDay(2024, 2, 30));
+  EXPECT_FALSE(UnixTimeOfDay(2024, 13, 1));
+  EXPECT_FALSE(UnixTimeOfDay(2024, 4, 31));
+  EXPECT_FALSE(UnixTimeOfDay(24, 1, 1));
+}
+
 }  // namespace
 }  // namespace uw
