@@ -89,20 +89,26 @@ struct Errors {
   Difference pass_end;   // rig cameras past the end of a pass
 };
 
-// Generates `config` into a fresh folder, computes the priors from its
-// files and compares them with truth/images.txt.
-Errors PriorsAgainstTruth(const sim::SimConfig& config, CameraMount mount,
-                          const std::string& suite) {
-  const fs::path out = testing::FreshTestDir(suite) / "sim";
-  sim::Generate(config, out);
+// The camera on the vehicle uwsim used (truth/sim.json of `sim_dir`).
+NavToCameraOptions CameraOnVehicle(const fs::path& sim_dir, CameraMount mount) {
   const nlohmann::json sim_json =
-      nlohmann::json::parse(ReadFileToString(out / "truth" / "sim.json"));
+      nlohmann::json::parse(ReadFileToString(sim_dir / "truth" / "sim.json"));
   NavToCameraOptions options;
   options.mount = mount;
   for (int k = 0; k < 3; ++k) {
     options.lever_arm_m(k) = sim_json["survey_options"]["lever_arm_m"][k];
     options.boresight_deg(k) = sim_json["survey_options"]["boresight_deg"][k];
   }
+  return options;
+}
+
+// Generates `config` into a fresh folder, computes the priors from its
+// files and compares them with truth/images.txt.
+Errors PriorsAgainstTruth(const sim::SimConfig& config, CameraMount mount,
+                          const std::string& suite) {
+  const fs::path out = testing::FreshTestDir(suite) / "sim";
+  sim::Generate(config, out);
+  NavToCameraOptions options = CameraOnVehicle(out, mount);
   const std::vector<NavRecord> nav =
       ReadNavigationCsv(out / "truth" / "nav.csv");
   const std::vector<ImageTime> times =
@@ -272,14 +278,7 @@ TEST(CameraPriorUwsim, AGeographicLogGivesTheLocalLogsPriors) {
   config.rig = TestRig();
   const fs::path dir = testing::FreshTestDir("uw_prior_uwsim_geographic");
   sim::Generate(config, dir / "sim");
-  const nlohmann::json sim_json = nlohmann::json::parse(
-      ReadFileToString(dir / "sim" / "truth" / "sim.json"));
-  NavToCameraOptions options;
-  options.mount = CameraMount::kDown;
-  for (int k = 0; k < 3; ++k) {
-    options.lever_arm_m(k) = sim_json["survey_options"]["lever_arm_m"][k];
-    options.boresight_deg(k) = sim_json["survey_options"]["boresight_deg"][k];
-  }
+  NavToCameraOptions options = CameraOnVehicle(dir / "sim", CameraMount::kDown);
   const std::vector<ImageTime> times =
       ReadImageTimesCsv(dir / "sim" / "image_times.csv");
   const RigConfig rig = ReadRigConfig(dir / "sim" / "truth" / "rig.json");
@@ -337,14 +336,7 @@ TEST(CameraPriorUwsim, AnNmeaLogGivesTheLocalLogsPriors) {
   config.lasers.every_nth_image = 0;
   const fs::path dir = testing::FreshTestDir("uw_prior_uwsim_nmea");
   sim::Generate(config, dir / "sim");
-  const nlohmann::json sim_json = nlohmann::json::parse(
-      ReadFileToString(dir / "sim" / "truth" / "sim.json"));
-  NavToCameraOptions options;
-  options.mount = CameraMount::kDown;
-  for (int k = 0; k < 3; ++k) {
-    options.lever_arm_m(k) = sim_json["survey_options"]["lever_arm_m"][k];
-    options.boresight_deg(k) = sim_json["survey_options"]["boresight_deg"][k];
-  }
+  NavToCameraOptions options = CameraOnVehicle(dir / "sim", CameraMount::kDown);
   const std::vector<ImageTime> times =
       ReadImageTimesCsv(dir / "sim" / "image_times.csv");
   std::vector<NavRecord> nav =
