@@ -1,6 +1,7 @@
 #include "colmap_plugins/nav/nmea.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -45,10 +46,11 @@ std::optional<Sentence> ParseSentence(const std::string& text, int line,
     const std::string given = text.substr(star + 1, 2);
     unsigned checksum = 0;
     for (const char c : body) checksum ^= static_cast<unsigned char>(c);
-    if (given.size() != 2 ||
-        fmt::format("{:02X}", checksum) !=
-            std::string{static_cast<char>(std::toupper(given[0])),
-                        static_cast<char>(std::toupper(given[1]))}) {
+    unsigned given_value = 0;
+    const auto [end, error] = std::from_chars(
+        given.data(), given.data() + given.size(), given_value, 16);
+    if (given.size() != 2 || error != std::errc() ||
+        end != given.data() + given.size() || given_value != checksum) {
       throw ErrorAt(where, ": checksum *", given, " does not match the ",
                     "sentence (computed *", fmt::format("{:02X}", checksum),
                     "): a line cut or corrupted");
@@ -167,10 +169,8 @@ double UnixTime(double time_of_day, const DateMark& mark, double after) {
   return time;
 }
 
-}  // namespace
-
-void NmeaOptions::Check() const {
-  if (date.empty()) return;
+// 00:00Z of "YYYY-MM-DD", or nullopt.
+std::optional<double> DayOfDate(const std::string& date) {
   int year = 0;
   int month = 0;
   int day = 0;
@@ -178,8 +178,16 @@ void NmeaOptions::Check() const {
   char dash2 = 0;
   std::istringstream stream(date);
   stream >> year >> dash1 >> month >> dash2 >> day;
-  if (!stream || !stream.eof() || dash1 != '-' || dash2 != '-' ||
-      !UnixTimeOfDay(year, month, day)) {
+  if (!stream || !stream.eof() || dash1 != '-' || dash2 != '-') {
+    return std::nullopt;
+  }
+  return UnixTimeOfDay(year, month, day);
+}
+
+}  // namespace
+
+void NmeaOptions::Check() const {
+  if (!date.empty() && !DayOfDate(date)) {
     throw ErrorAt("--nmea_date ", date, " is not a date YYYY-MM-DD");
   }
 }
@@ -227,10 +235,7 @@ std::vector<NavRecord> ReadNmeaLog(const std::filesystem::path& path,
     if (mark) break;
   }
   if (!mark && !options.date.empty()) {
-    const int year = std::stoi(options.date.substr(0, 4));
-    const int month = std::stoi(options.date.substr(5, 2));
-    const int day = std::stoi(options.date.substr(8, 2));
-    mark = DateMark{*UnixTimeOfDay(year, month, day), 0.0, false};
+    mark = DateMark{*DayOfDate(options.date), 0.0, false};
   }
 
   NavLogFrame read_frame;

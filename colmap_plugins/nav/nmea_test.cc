@@ -119,6 +119,9 @@ TEST_F(NmeaTest, ALogWithoutADateNeedsOne) {
   NmeaOptions options;
   options.date = "2024-10-08";
   EXPECT_EQ(Read(text, options).at(0).time_s, kDay + 12 * 3600 + 1.0);
+  options.date = "2024-9-8";  // one-digit month and day, as Check allows
+  EXPECT_EQ(Read(text, options).at(0).time_s,
+            *UnixTimeOfDay(2024, 9, 8) + 12 * 3600 + 1.0);
   options.date = "2024-02-30";
   ExpectErrorContaining([&] { Read(text, options); },
                         "--nmea_date 2024-02-30 is not a date");
