@@ -166,7 +166,8 @@ TEST(SinglePassScarp, TheAdjusterNamesImagesWithoutScaleTransfer) {
           " bundle_adjuster --input_path " + Quoted(dir / "tracks") +
           " --output_path " + Quoted(dir / "ba") + " --nav " +
           Quoted(plan / "nav.csv") + SurveyMountFlags(plan) +
-          " --Nav.use_attitude 1 --BundleAdjustment.max_num_iterations 10",
+          " --Nav.use_attitude 1 --BundleAdjustment.max_num_iterations 10"
+          " --BundleAdjustment.unconverged warn",
       true);
   ASSERT_EQ(adjusted.exit_code, 0) << adjusted.output;
   EXPECT_NE(adjusted.output.find("images share no point that 3 images see"),
@@ -205,7 +206,8 @@ TEST(SinglePassScarp, NonMonotonicStepsConvergeWhereColmapsCrawl) {
       adjust("colmaps",
              " --BundleAdjustment.use_nonmonotonic_steps 0"
              " --BundleAdjustment.function_tolerance 0"
-             " --BundleAdjustment.max_num_iterations 40");
+             " --BundleAdjustment.max_num_iterations 40"
+             " --BundleAdjustment.unconverged warn");
   EXPECT_EQ(ours.at("termination"), "CONVERGENCE");
   EXPECT_LE(ours.at("iterations").get<int>(), 40);
   EXPECT_TRUE(ours.at("warnings").empty()) << ours.at("warnings");

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 
+#include "colmap_plugins/align/similarity_cost.h"
 #include "common/util/error.h"
 #include "common/util/median.h"
 
@@ -27,41 +28,6 @@ constexpr double kHuberScaleInSigmas = 1.345;
 // A set of points is collinear when its second singular value is below this
 // fraction of the first: the rotation about the line is then undetermined.
 constexpr double kMinSpreadRatio = 1e-6;
-
-// Residual of one point pair, whitened by the target's covariance:
-// L^-1 (scale * R * src + t − dst), with Σ = L L^T. Frames: src in a, dst
-// and the residual's metres in b (centred, see EstimateSimilarity).
-struct WhitenedPointResidual {
-  WhitenedPointResidual(const Eigen::Vector3d& src, const Eigen::Vector3d& dst,
-                        const Eigen::Matrix3d& sqrt_information)
-      : src_(src), dst_(dst), sqrt_information_(sqrt_information) {}
-
-  template <typename T>
-  bool operator()(const T* rotation, const T* translation, const T* log_scale,
-                  T* residuals) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> b_from_a_rotation(rotation);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> b_from_a_translation(
-        translation);
-    const Eigen::Matrix<T, 3, 1> error =
-        ceres::exp(log_scale[0]) * (b_from_a_rotation * src_.cast<T>()) +
-        b_from_a_translation - dst_.cast<T>();
-    Eigen::Map<Eigen::Matrix<T, 3, 1>> whitened(residuals);
-    whitened = sqrt_information_.cast<T>() * error;
-    return true;
-  }
-
-  static ceres::CostFunction* Create(const Eigen::Vector3d& src,
-                                     const Eigen::Vector3d& dst,
-                                     const Eigen::Matrix3d& sqrt_information) {
-    return new ceres::AutoDiffCostFunction<WhitenedPointResidual, 3, 4, 3, 1>(
-        new WhitenedPointResidual(src, dst, sqrt_information));
-  }
-
- private:
-  const Eigen::Vector3d src_;
-  const Eigen::Vector3d dst_;
-  const Eigen::Matrix3d sqrt_information_;
-};
 
 // Closed-form weighted least squares (Umeyama 1991); weights may be empty
 // (all 1). Without estimate_scale, the rotation is the same and the scale 1.
@@ -103,12 +69,6 @@ Sim3d UmeyamaSimilarity(const std::vector<Eigen::Vector3d>& src,
       estimate_scale ? svd.singularValues().dot(sign) / src_variance : 1.0;
   b_from_a.translation = dst_mean - b_from_a.scale * (rotation * src_mean);
   return b_from_a;
-}
-
-Eigen::Vector3d Mean(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& point : points) sum += point;
-  return sum / static_cast<double>(points.size());
 }
 
 // RMS spread of the points along their principal axes, largest first.
@@ -329,6 +289,7 @@ Sim3d RefineSimilarityFrom(const Problem& problem,
   Eigen::Quaterniond rotation = initial.rotation.normalized();
   Eigen::Vector3d translation = initial.translation;
   double log_scale = std::log(initial.scale);
+  Eigen::Vector3d no_offset = Eigen::Vector3d::Zero();
   ceres::Problem ceres_problem;
   for (size_t i = 0; i < problem.src.size(); ++i) {
     if (!inliers[i]) continue;
@@ -336,21 +297,15 @@ Sim3d RefineSimilarityFrom(const Problem& problem,
         WhitenedPointResidual::Create(problem.src[i], problem.dst[i],
                                       problem.sqrt_information[i]),
         huber_scale > 0.0 ? new ceres::HuberLoss(huber_scale) : nullptr,
-        rotation.coeffs().data(), translation.data(), &log_scale);
+        rotation.coeffs().data(), translation.data(), &log_scale,
+        no_offset.data());
   }
+  ceres_problem.SetParameterBlockConstant(no_offset.data());
   ceres_problem.SetManifold(rotation.coeffs().data(),
                             new ceres::EigenQuaternionManifold);
   if (!estimate_scale) ceres_problem.SetParameterBlockConstant(&log_scale);
-  ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = ceres::DENSE_QR;
-  solver_options.max_num_iterations = 100;
-  solver_options.function_tolerance = 1e-12;
-  solver_options.gradient_tolerance = 1e-14;
-  solver_options.parameter_tolerance = 1e-14;
-  solver_options.num_threads = 1;
-  solver_options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
-  ceres::Solve(solver_options, &ceres_problem, &summary);
+  ceres::Solve(SimilaritySolverOptions(100), &ceres_problem, &summary);
   if (!summary.IsSolutionUsable()) {
     throw ErrorAt("similarity: refinement failed: ", summary.message);
   }

@@ -117,22 +117,34 @@ TEST(BundleCovariance, PixelSigmaIsEstimatedWithTheRedundancy) {
   scene_options.pixel_sigma = 0.8;
   const test::TestScene scene = test::MakeTestScene(scene_options);
   Reconstruction model = scene.observed;
-  AdjustWithNavigation(RefinedIntrinsics(), scene.priors, nullptr, {}, &model);
-  const BundleCovariance estimated = EstimateBundleCovariance(
-      RefinedIntrinsics(), scene.priors, nullptr, {}, model, {});
+  // k1 refined, f held: on this scene the adjustment run to convergence
+  // (since 2026-12-07 it no longer stops at 100 iterations) moves f to
+  // 55 px (800 true) at the cost it has at 800, and to 548 px with 5 cm
+  // navigation and a 0.5 m vertical wiggle of the track; stopped at 100
+  // iterations it had stayed near the truth, which this test relied on.
+  // Why f is that free here is not understood yet (docs/dev/issue17_plan.md).
+  NavBundleAdjustmentOptions adjuster = RefinedIntrinsics();
+  adjuster.refine_focal_length = false;
+  const NavBundleAdjustmentReport report =
+      AdjustWithNavigation(adjuster, scene.priors, nullptr, {}, &model);
+  EXPECT_EQ(report.termination, "CONVERGENCE");
+  const BundleCovariance estimated =
+      EstimateBundleCovariance(adjuster, scene.priors, nullptr, {}, model, {});
   EXPECT_NEAR(estimated.pixel_sigma_px, 0.8, 0.04);
   BundleCovarianceOptions given;
   given.pixel_sigma_px = 1.6;
   const BundleCovariance doubled = EstimateBundleCovariance(
-      RefinedIntrinsics(), scene.priors, nullptr, {}, model, given);
+      adjuster, scene.priors, nullptr, {}, model, given);
   EXPECT_EQ(doubled.pixel_sigma_source, "given");
   // Twice the pixel noise: the images' share of the information is a
-  // quarter, so every point's variance grows (priors only hold the datum).
-  EXPECT_GT(doubled.points[0].xyz.trace(),
-            2.0 * estimated.points[0].xyz.trace());
+  // quarter, so what only the images determine (k1) has nearly 4x the
+  // variance. (A point's variance in the world is mostly the datum's,
+  // which the 0.3 m navigation holds: it barely grows.)
   ASSERT_EQ(estimated.cameras.size(), 1u);
-  EXPECT_EQ(estimated.cameras[0].param_indices, (std::vector<int>{0, 3}));
-  EXPECT_EQ(estimated.cameras[0].params.rows(), 2);
+  EXPECT_GT(doubled.cameras[0].params(0, 0),
+            3.5 * estimated.cameras[0].params(0, 0));
+  EXPECT_EQ(estimated.cameras[0].param_indices, (std::vector<int>{3}));
+  EXPECT_EQ(estimated.cameras[0].params.rows(), 1);
 }
 
 // The priors as the adjustment weighted them: a weight lambda makes their

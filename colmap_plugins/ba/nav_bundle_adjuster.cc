@@ -12,10 +12,10 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
-#include "colmap_plugins/align/similarity.h"
 #include "colmap_plugins/ba/bundle_covariance.h"
 #include "colmap_plugins/ba/ceres_covariance.h"
 #include "colmap_plugins/ba/nav_prior.h"
+#include "colmap_plugins/ba/prior_alignment.h"
 #include "colmap_plugins/ba/reprojection_error.h"
 #include "colmap_plugins/ba/rig_prior.h"
 #include "colmap_plugins/ba/scale_transfer.h"
@@ -73,6 +73,10 @@ void NavBundleAdjustmentOptions::Check() const {
   if (max_num_iterations < 0 || max_linear_solver_iterations < 1) {
     throw ErrorAt("bundle adjustment iteration limits must be >= 0 / >= 1");
   }
+  if (max_continuations < 0) {
+    throw ErrorAt("bundle adjustment max_continuations must be >= 0, got ",
+                  max_continuations);
+  }
   for (const double tolerance :
        {function_tolerance, gradient_tolerance, parameter_tolerance}) {
     if (!(std::isfinite(tolerance) && tolerance >= 0.0)) {
@@ -109,6 +113,28 @@ double NavSigma(const std::vector<ImagePosePrior>& priors) {
     sum += prior.position_covariance.trace() / 3.0;
   }
   return std::sqrt(sum / priors.size());
+}
+
+std::string UnconvergedPolicyName(UnconvergedPolicy policy) {
+  switch (policy) {
+    case UnconvergedPolicy::kContinue:
+      return "continue";
+    case UnconvergedPolicy::kFail:
+      return "fail";
+    case UnconvergedPolicy::kWarn:
+      return "warn";
+  }
+  throw ErrorAt("invalid UnconvergedPolicy ", static_cast<int>(policy));
+}
+
+UnconvergedPolicy UnconvergedPolicyFromName(const std::string& name) {
+  for (const UnconvergedPolicy policy :
+       {UnconvergedPolicy::kContinue, UnconvergedPolicy::kFail,
+        UnconvergedPolicy::kWarn}) {
+    if (name == UnconvergedPolicyName(policy)) return policy;
+  }
+  throw ErrorAt("unknown unconverged policy '", name,
+                "' (continue, fail or warn)");
 }
 
 std::string NoConvergenceWarning(int max_num_iterations, int last_iterations,
@@ -234,7 +260,14 @@ class Adjustment {
   // Moves the model by the similarity that minimises the position priors'
   // term for its current shape; false when that similarity is the identity
   // (to rounding).
+  // With dive offsets, also sets them to the joint fit's.
   bool ReplaceOnPriors();
+  // Camera centres of the priors' images, in the priors' order.
+  std::vector<Eigen::Vector3d> PriorCentres() const;
+  // Dive offsets from where the model is, before the first solve (they
+  // start at zero): the joint fit with the placement when the placement
+  // rounds apply, else each dive's mean residual.
+  void SeedDiveOffsets();
   void EstimateOffsetCovariance(NavBundleAdjustmentReport* report);
   // Checks that `gauge` is one this problem can have and fixes it; returns
   // its description.
@@ -727,25 +760,58 @@ bool Adjustment::PlacementApplies() const {
          rig_pairings_.empty() && options_.refine_extrinsics;
 }
 
-bool Adjustment::ReplaceOnPriors() {
-  std::vector<Eigen::Vector3d> centers;
-  std::vector<Eigen::Vector3d> targets;
-  std::vector<Eigen::Matrix3d> covariances;
+std::vector<Eigen::Vector3d> Adjustment::PriorCentres() const {
+  std::vector<Eigen::Vector3d> centres;
   for (const ImagePosePrior& prior : priors_) {
     const PoseBlock& pose = poses_[image_index_.at(prior.image_id)];
     const Eigen::Quaterniond cam_from_world(pose.rotation[0], pose.rotation[1],
                                             pose.rotation[2], pose.rotation[3]);
-    centers.push_back(-(cam_from_world.conjugate() *
+    centres.push_back(-(cam_from_world.conjugate() *
                         Eigen::Map<const Eigen::Vector3d>(pose.translation)));
-    const int dive = options_.dive_offsets ? prior.dive : reference_dive_;
-    targets.push_back(prior.position_in_world + dive_offsets_.at(dive));
-    covariances.push_back(prior.position_covariance);
   }
-  SimilarityOptions similarity_options;
-  similarity_options.robust = false;
-  const Sim3d new_from_old =
-      EstimateSimilarity(centers, targets, &covariances, similarity_options)
-          .b_from_a;
+  return centres;
+}
+
+void Adjustment::SeedDiveOffsets() {
+  if (!options_.dive_offsets || dive_offsets_.size() < 2) return;
+  if (PlacementApplies()) {
+    ReplaceOnPriors();
+    return;
+  }
+  // Something else holds the placement (attitude priors, a rig): each
+  // offset at its dive's information-weighted mean residual where the
+  // model is.
+  const std::vector<Eigen::Vector3d> centres = PriorCentres();
+  std::map<int, Eigen::Matrix3d> information;
+  std::map<int, Eigen::Vector3d> weighted;
+  for (size_t i = 0; i < priors_.size(); ++i) {
+    const int dive = priors_[i].dive;
+    const Eigen::Matrix3d w = priors_[i].position_covariance.inverse();
+    information.try_emplace(dive, Eigen::Matrix3d::Zero()).first->second += w;
+    weighted.try_emplace(dive, Eigen::Vector3d::Zero()).first->second +=
+        w * (centres[i] - priors_[i].position_in_world);
+  }
+  for (auto& [dive, offset] : dive_offsets_) {
+    if (dive == reference_dive_) continue;
+    offset = information.at(dive).ldlt().solve(weighted.at(dive));
+  }
+}
+
+bool Adjustment::ReplaceOnPriors() {
+  const std::vector<Eigen::Vector3d> centers = PriorCentres();
+  // With dive offsets, the similarity and the offsets together: the model's
+  // placement and the offsets trade off along a shallow valley, which
+  // refitting the similarity alone to stale offsets does not cross.
+  NavBundleAdjustmentOptions fit_options = options_;
+  fit_options.reference_dive = reference_dive_;
+  const SimilarityWithOffsets fit = FitToPriors(priors_, centers, fit_options);
+  const Sim3d& new_from_old = fit.b_from_a;
+  double offsets_move = 0.0;
+  for (const auto& [dive, offset] : fit.offsets) {
+    offsets_move =
+        std::max(offsets_move, (offset - dive_offsets_.at(dive)).norm());
+    dive_offsets_.at(dive) = offset;
+  }
   double extent = 0.0;
   for (const Eigen::Vector3d& center : centers) {
     extent = std::max(extent, (center - centers.front()).norm());
@@ -753,7 +819,8 @@ bool Adjustment::ReplaceOnPriors() {
   constexpr double kNegligible = 1e-9;
   if (std::abs(new_from_old.scale - 1.0) < kNegligible &&
       Eigen::AngleAxisd(new_from_old.rotation).angle() < kNegligible &&
-      new_from_old.translation.norm() < kNegligible * std::max(extent, 1.0)) {
+      new_from_old.translation.norm() < kNegligible * std::max(extent, 1.0) &&
+      offsets_move < kNegligible * std::max(extent, 1.0)) {
     return false;
   }
   // x_cam = R_c x + t_c and x' = s R x + t give, with the camera frame
@@ -934,6 +1001,7 @@ NavBundleAdjustmentReport Adjustment::Run() {
     weights.rig = pixel_sigma_ * per_term(rig_pairings_.size());
   }
 
+  SeedDiveOffsets();
   ceres::Problem::Options problem_options;
   ceres::Problem problem(problem_options);
   std::map<std::string, std::vector<ceres::ResidualBlockId>> terms;
@@ -999,12 +1067,39 @@ NavBundleAdjustmentReport Adjustment::Run() {
       break;
     }
   }
+  if (options_.unconverged == UnconvergedPolicy::kContinue) {
+    solver_options.max_num_iterations = options_.max_num_iterations;
+    while (summary.termination_type == ceres::NO_CONVERGENCE &&
+           report.num_continuations < options_.max_continuations) {
+      ++report.num_continuations;
+      if (placement) ReplaceOnPriors();
+      ceres::Solve(solver_options, &problem, &summary);
+      if (summary.termination_type == ceres::FAILURE) {
+        throw ErrorAt("bundle adjustment failed: ", summary.message);
+      }
+      report.num_iterations += static_cast<int>(summary.iterations.size()) - 1;
+    }
+  }
   report.solve_time_s =
       std::chrono::duration<double>(Clock::now() - start).count();
   report.termination = ceres::TerminationTypeToString(summary.termination_type);
   if (summary.termination_type == ceres::NO_CONVERGENCE) {
-    report.warnings.push_back(
-        IterationLimitWarning(summary, options_.max_num_iterations));
+    std::string reason =
+        IterationLimitWarning(summary, options_.max_num_iterations);
+    if (options_.unconverged == UnconvergedPolicy::kWarn) {
+      report.warnings.push_back(reason);
+    } else {
+      throw ErrorAt(
+          "bundle adjustment did not converge",
+          options_.unconverged == UnconvergedPolicy::kContinue
+              ? fmt::format(" in {} iterations ({} solves of up to {})",
+                            report.num_iterations, report.num_continuations + 1,
+                            options_.max_num_iterations)
+              : std::string(),
+          ": ", reason,
+          ". Nothing was written; --BundleAdjustment.unconverged warn keeps "
+          "such a model, with this warning");
+    }
   }
   report.solver = std::string(ceres::LinearSolverTypeToString(
                       summary.linear_solver_type_used)) +

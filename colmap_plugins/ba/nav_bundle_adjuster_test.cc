@@ -9,6 +9,7 @@
 
 #include "colmap_plugins/ba/test_scene.h"
 #include "common/util/error.h"
+#include "common/util/error_testing.h"
 
 namespace uw {
 namespace {
@@ -42,14 +43,16 @@ TEST(NavBundleAdjuster, WithoutPriorsFixesSevenDofAndReachesTheNoiseFloor) {
   EXPECT_EQ(report.final_terms.count("navigation_position"), 0u);
 }
 
-// Stopped at its iteration limit, the adjustment says so (COLMAP reports
-// NO_CONVERGENCE and carries on); run on to its minimum, it does not.
+// Told to warn (colmap's way: NO_CONVERGENCE, and carry on), a solve
+// stopped at its iteration limit says so; run on to its minimum, it does
+// not.
 TEST(NavBundleAdjuster, ASolveStoppedAtItsIterationLimitWarns) {
   const test::TestScene scene = test::MakeTestScene({});
   Reconstruction model = scene.observed;
   test::Perturb(0.1, 0.01, 8, &model);
   NavBundleAdjustmentOptions options = test::FixedIntrinsics();
   options.max_num_iterations = 2;
+  options.unconverged = UnconvergedPolicy::kWarn;
   const NavBundleAdjustmentReport stopped =
       AdjustWithNavigation(options, {}, nullptr, {}, &model);
   EXPECT_EQ(stopped.termination, "NO_CONVERGENCE");
@@ -63,6 +66,54 @@ TEST(NavBundleAdjuster, ASolveStoppedAtItsIterationLimitWarns) {
       AdjustWithNavigation(test::FixedIntrinsics(), {}, nullptr, {}, &model);
   EXPECT_EQ(converged.termination, "CONVERGENCE");
   EXPECT_TRUE(converged.warnings.empty());
+}
+
+// By default a solve stopped at its limit goes on, as many iterations at
+// a time, to its minimum; a model that still does not get there, or any
+// with `fail`, is an error that names the flags, and nothing is changed.
+TEST(NavBundleAdjuster, AnUnconvergedSolveContinuesOrFails) {
+  const test::TestScene scene = test::MakeTestScene({});
+  Reconstruction perturbed = scene.observed;
+  test::Perturb(0.1, 0.01, 8, &perturbed);
+  NavBundleAdjustmentOptions options = test::FixedIntrinsics();
+  options.max_num_iterations = 2;
+
+  Reconstruction model = perturbed;
+  const NavBundleAdjustmentReport continued =
+      AdjustWithNavigation(options, {}, nullptr, {}, &model);
+  EXPECT_EQ(continued.termination, "CONVERGENCE");
+  EXPECT_GT(continued.num_continuations, 0);
+  EXPECT_TRUE(continued.warnings.empty());
+  std::cout << "[ figures ] max_num_iterations 2: converged after "
+            << continued.num_iterations << " iterations in "
+            << continued.num_continuations + 1 << " solves\n";
+
+  options.max_continuations = 1;
+  model = perturbed;
+  const std::string exhausted =
+      ErrorOf([&] { AdjustWithNavigation(options, {}, nullptr, {}, &model); });
+  EXPECT_NE(exhausted.find("did not converge in 4 iterations (2 solves of up "
+                           "to 2)"),
+            std::string::npos)
+      << exhausted;
+  EXPECT_NE(exhausted.find("--BundleAdjustment.unconverged warn"),
+            std::string::npos);
+  EXPECT_EQ(test::CameraCenterRmse(model, perturbed), 0.0);
+
+  options.unconverged = UnconvergedPolicy::kFail;
+  const std::string failed =
+      ErrorOf([&] { AdjustWithNavigation(options, {}, nullptr, {}, &model); });
+  EXPECT_NE(failed.find("did not converge: the adjustment stopped at its "
+                        "iteration limit"),
+            std::string::npos)
+      << failed;
+  EXPECT_EQ(test::CameraCenterRmse(model, perturbed), 0.0);
+
+  EXPECT_EQ(UnconvergedPolicyFromName("warn"), UnconvergedPolicy::kWarn);
+  ExpectErrorContaining([] { UnconvergedPolicyFromName("stop"); },
+                        "unknown unconverged policy 'stop'");
+  options.max_continuations = -1;
+  ExpectErrorContaining([&] { options.Check(); }, "max_continuations");
 }
 
 TEST(NavBundleAdjuster, TheIterationLimitWarningSaysHowMuchTheCostStillFell) {

@@ -200,8 +200,8 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
     // A model from SfM has its own frame and scale; the adjustment only
     // refines locally.
     AlignToPriorsPlausibly(inputs.priors, options.priors.plausibility,
-                           options.priors.PriorsName(), kAcceptFlag, model,
-                           &alignment_warnings);
+                           options.priors.PriorsName(), kAcceptFlag,
+                           options.adjuster, model, &alignment_warnings);
     NavBundleAdjustmentOptions adjuster = options.adjuster;
     const NavWeightSelection selection = options.weight.selection;
     if (selection == NavWeightSelection::kFixed) {
@@ -246,7 +246,7 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
       result.world_from_adjusted_model =
           AlignToPriorsPlausibly(inputs.priors, options.priors.plausibility,
                                  options.priors.PriorsName(), kAcceptFlag,
-                                 model, &alignment_warnings)
+                                 options.adjuster, model, &alignment_warnings)
               .b_from_a;
     }
   }
@@ -303,9 +303,14 @@ std::string FormatNavBundleAdjustmentSummary(
           dive["mean_error_m"].dump(), dive["rms_error_m"].dump());
     }
   }
-  text += fmt::format("{} iterations, {}, {:g} s solve, {:g} s in all\n",
-                      report.num_iterations, report.termination,
-                      report.solve_time_s, result.total_time_s);
+  text +=
+      fmt::format("{} iterations{}, {}, {:g} s solve, {:g} s in all\n",
+                  report.num_iterations,
+                  report.num_continuations > 0
+                      ? fmt::format(" ({} solves: continued past the limit)",
+                                    report.num_continuations + 1)
+                      : std::string(),
+                  report.termination, report.solve_time_s, result.total_time_s);
   return text;
 }
 
@@ -351,8 +356,8 @@ NavLCurveResult SweepModelLCurve(const NavLCurveOptions& options,
   NavLCurveResult result;
   result.warnings = inputs.warnings;
   AlignToPriorsPlausibly(inputs.priors, options.priors.plausibility,
-                         options.priors.PriorsName(), kAcceptFlag, &aligned,
-                         &result.warnings);
+                         options.priors.PriorsName(), kAcceptFlag,
+                         options.adjuster, &aligned, &result.warnings);
   result.noise_levels = EstimateAndReportNoiseLevels(
       options.adjuster, inputs.priors, aligned, progress);
   result.curve = SweepAroundEstimate(

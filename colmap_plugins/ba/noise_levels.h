@@ -29,6 +29,7 @@
 // than its noise alone would allow, which keeps its noise out of the shape.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,10 @@ struct NoiseLevels {
   double weight_px_per_m = 0.0;     // lambda = sigma_v / sigma_n
   double reprojection_dof = 0.0;
   double navigation_dof = 0.0;
+  // With options.dive_offsets: each dive's offset (added to its priors;
+  // the reference dive's zero) in the least-squares fit above, the start
+  // the adjustment takes for its own.
+  std::map<int, Eigen::Vector3d> dive_offsets;
   // The images-only adjustment's warnings (an unconverged solve above
   // all): the estimates come from its model.
   std::vector<std::string> warnings;

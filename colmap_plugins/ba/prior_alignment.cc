@@ -1,10 +1,31 @@
 #include "colmap_plugins/ba/prior_alignment.h"
 
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <Eigen/Cholesky>
+
 #include "colmap_plugins/align/similarity.h"
+#include "colmap_plugins/align/similarity_with_offsets.h"
 #include "common/util/error.h"
 
 namespace uw {
 namespace {
+
+// 99.9 % quantile of the chi-square distribution with 3 degrees of freedom:
+// the robust similarity's inlier threshold (similarity.h).
+constexpr double kChiSquare3Dof999 = 16.266;
+
+Eigen::Vector3d CenterOf(const Reconstruction& reconstruction,
+                         const ImagePosePrior& prior) {
+  const Image* image = reconstruction.FindImage(prior.image_id);
+  if (image == nullptr) {
+    throw ErrorAt("a prior names image id ", prior.image_id,
+                  ", which is not in the model");
+  }
+  return image->ProjectionCenter();
+}
 
 struct PriorSimilarity {
   SimilarityResult similarity;
@@ -18,12 +39,7 @@ PriorSimilarity EstimateToPriors(const std::vector<ImagePosePrior>& priors,
   std::vector<Eigen::Matrix3d> covariances;
   PriorSimilarity result;
   for (const ImagePosePrior& prior : priors) {
-    const Image* image = reconstruction.FindImage(prior.image_id);
-    if (image == nullptr) {
-      throw ErrorAt("a prior names image id ", prior.image_id,
-                    ", which is not in the model");
-    }
-    centers.push_back(image->ProjectionCenter());
+    centers.push_back(CenterOf(reconstruction, prior));
     result.positions.push_back(prior.position_in_world);
     covariances.push_back(prior.position_covariance);
   }
@@ -32,7 +48,66 @@ PriorSimilarity EstimateToPriors(const std::vector<ImagePosePrior>& priors,
   return result;
 }
 
+// With dive offsets: the least-squares fit of the similarity and the
+// offsets, as a SimilarityResult whose residuals have the offsets taken
+// out and whose inliers are those within the robust fit's threshold.
+PriorSimilarity EstimateWithOffsetsToPriors(
+    const std::vector<ImagePosePrior>& priors,
+    const Reconstruction& reconstruction,
+    const NavBundleAdjustmentOptions& adjuster) {
+  std::vector<Eigen::Vector3d> centers;
+  PriorSimilarity result;
+  for (const ImagePosePrior& prior : priors) {
+    centers.push_back(CenterOf(reconstruction, prior));
+    result.positions.push_back(prior.position_in_world);
+  }
+  const SimilarityWithOffsets fit = FitToPriors(priors, centers, adjuster);
+  SimilarityResult& similarity = result.similarity;
+  similarity.b_from_a = fit.b_from_a;
+  similarity.residuals = fit.residuals;
+  const double max_mahalanobis = std::sqrt(kChiSquare3Dof999);
+  double squared_sum = 0.0;
+  for (size_t i = 0; i < priors.size(); ++i) {
+    const Eigen::Vector3d& residual = fit.residuals[i];
+    similarity.mahalanobis.push_back(std::sqrt(
+        residual.dot(priors[i].position_covariance.ldlt().solve(residual))));
+    similarity.inliers.push_back(similarity.mahalanobis.back() <=
+                                 max_mahalanobis);
+    if (similarity.inliers.back()) {
+      ++similarity.num_inliers;
+      squared_sum += residual.squaredNorm();
+    }
+  }
+  similarity.rms_m =
+      similarity.num_inliers > 0
+          ? std::sqrt(squared_sum / static_cast<double>(similarity.num_inliers))
+          : 0.0;
+  similarity.max_mahalanobis = max_mahalanobis;
+  return result;
+}
+
 }  // namespace
+
+SimilarityWithOffsets FitToPriors(const std::vector<ImagePosePrior>& priors,
+                                  const std::vector<Eigen::Vector3d>& centres,
+                                  const NavBundleAdjustmentOptions& adjuster) {
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<Eigen::Matrix3d> covariances;
+  std::vector<int> dives;
+  for (const ImagePosePrior& prior : priors) {
+    positions.push_back(prior.position_in_world);
+    covariances.push_back(prior.position_covariance);
+    dives.push_back(prior.dive);
+  }
+  const int reference_dive =
+      adjuster.reference_dive != 0 || dives.empty()
+          ? adjuster.reference_dive
+          : *std::min_element(dives.begin(), dives.end());
+  if (!adjuster.dive_offsets) dives.assign(dives.size(), reference_dive);
+  return EstimateSimilarityWithOffsets(centres, positions, covariances, dives,
+                                       reference_dive,
+                                       SimilarityWithOffsetsOptions());
+}
 
 SimilarityResult AlignToPriors(const std::vector<ImagePosePrior>& priors,
                                Reconstruction* reconstruction,
@@ -45,10 +120,14 @@ SimilarityResult AlignToPriors(const std::vector<ImagePosePrior>& priors,
 SimilarityResult AlignToPriorsPlausibly(
     const std::vector<ImagePosePrior>& priors,
     const AlignmentPlausibilityOptions& plausibility, const std::string& what,
-    const std::string& flag, Reconstruction* reconstruction,
-    std::vector<std::string>* warnings) {
+    const std::string& flag, const NavBundleAdjustmentOptions& adjuster,
+    Reconstruction* reconstruction, std::vector<std::string>* warnings) {
+  std::set<int> dives;
+  for (const ImagePosePrior& prior : priors) dives.insert(prior.dive);
   PriorSimilarity result =
-      EstimateToPriors(priors, *reconstruction, SimilarityOptions());
+      adjuster.dive_offsets && dives.size() > 1
+          ? EstimateWithOffsetsToPriors(priors, *reconstruction, adjuster)
+          : EstimateToPriors(priors, *reconstruction, SimilarityOptions());
   const std::vector<std::string> found = PlausibilityWarnings(
       CheckAlignmentPlausibility(*reconstruction, result.similarity,
                                  result.positions, what, plausibility),

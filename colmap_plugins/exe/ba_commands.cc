@@ -33,6 +33,15 @@ void AddNavBundleAdjustmentFlags(CommandLine* cli, std::string* input_path,
   AddNavFlags(cli, &priors->nav, false, "--Rig.config");
   cli->Add("--BundleAdjustment.max_num_iterations",
            &adjuster->max_num_iterations, "Solver iterations at most");
+  cli->Add<UnconvergedPolicy>(
+      "--BundleAdjustment.unconverged", &adjuster->unconverged,
+      "A solve still lowering its cost at max_num_iterations: continue "
+      "(solve on, up to max_continuations more times, then fail), fail "
+      "(an error, nothing written) or warn (colmap's way: the model is "
+      "written, with a warning)",
+      UnconvergedPolicyFromName, UnconvergedPolicyName);
+  cli->Add("--BundleAdjustment.max_continuations", &adjuster->max_continuations,
+           "Further solves of max_num_iterations that continue may take");
   cli->Add("--BundleAdjustment.max_linear_solver_iterations",
            &adjuster->max_linear_solver_iterations,
            "Linear solver iterations at most");
