@@ -14,11 +14,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "colmap_plugins/nav/nav_csv.h"
 #include "colmap_plugins/scene/model.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/file.h"
 #include "common/util/subprocess.h"
+#include "tests/support/multi_dive.h"
 #include "tests/support/process.h"
 
 namespace uw {
@@ -127,63 +127,72 @@ TEST(NavBundleAdjusterUwsim, DiveOffsetsRecoverTheTrueBiases) {
   EXPECT_GT(-split.dot(bias) / bias.squaredNorm(), 0.3);
 }
 
-// Issue 17: three dives 1.2 m apart under 7 cm of USBL noise, on the vent,
-// with default flags. Until 2026-12-07 the robust initial alignment took
-// one dive and refused the log as paired with another time ("only 9 of the
-// 24 positions agree"), and the noise estimate fitted the offsets and the
-// similarity in turn (on the scarp: 100 iterations, NO_CONVERGENCE, exit
-// 0, sigma_n 4.9x the realised noise). The offsets must match the
-// biases within 3 of their sigmas, and sigma_n the realised noise within
-// 1.5x.
-TEST(NavBundleAdjusterUwsim, ThreeDivesFarApartConvergeWithDefaultFlags) {
-  const fs::path dir = FreshTestDir("uw_nav_ba_three_dives");
-  MakeSurvey(dir, "nav_ba_three_dives.json", "multi_dive");
-  const nlohmann::json sim =
-      nlohmann::json::parse(ReadFileToString(dir / "sim/truth/sim.json"));
-  const auto& biases = sim["truth"]["dive_biases_m"];
-  const auto bias_of = [&](int dive) {
-    return Eigen::Vector3d(biases[dive - 1][0].get<double>(),
-                           biases[dive - 1][1].get<double>(),
-                           biases[dive - 1][2].get<double>());
-  };
-  const std::vector<NavRecord> logged =
-      ReadNavigationCsv(dir / "sim" / "nav.csv");
-  const std::vector<NavRecord> truth =
-      ReadNavigationCsv(dir / "sim" / "truth" / "nav.csv");
-  ASSERT_EQ(logged.size(), truth.size());
-  double squared = 0.0;
-  for (size_t i = 0; i < logged.size(); ++i) {
-    squared +=
-        (logged[i].position - bias_of(logged[i].dive) - truth[i].position)
-            .squaredNorm();
+// Issue 17: three dives 1.2 m apart under 7 cm of USBL noise (uwsim config
+// `fixture`), adjusted with default flags and --Dive.offsets 1: converged,
+// the offsets within 3 of their sigmas of the biases, and, with
+// `noise_estimate_holds`, sigma_n within 1.5x of the realised noise.
+testing::MultiDiveChain ExpectThreeDivesFused(const std::string& fixture,
+                                              const std::string& name,
+                                              bool noise_estimate_holds) {
+  const testing::MultiDiveChain chain = testing::RunMultiDiveChain(
+      UW_BIN_DIR, kFixtures / fixture, FreshTestDir(name));
+  EXPECT_EQ(chain.exit_code, 0) << chain.output;
+  EXPECT_EQ(chain.termination, "CONVERGENCE");
+  std::cout << "[ figures ] " << fixture << ": sigma_n " << chain.nav_sigma_m
+            << " m against " << chain.realised_nav_m << " m realised; "
+            << chain.iterations << " iterations;";
+  if (noise_estimate_holds) {
+    EXPECT_LT(std::abs(std::log(chain.nav_sigma_m / chain.realised_nav_m)),
+              std::log(1.5));
   }
-  const double realised_m = std::sqrt(squared / (3.0 * logged.size()));
-
-  const nlohmann::json report = RunAdjuster(dir, "ba", "--Dive.offsets 1");
-  EXPECT_EQ(report["termination"], "CONVERGENCE");
-  const double nav_sigma_m =
-      report["run"]["noise_levels"]["nav_sigma_m"].get<double>();
-  std::cout << "[ figures ] sigma_n " << nav_sigma_m << " m against "
-            << realised_m << " m realised; " << report["iterations"]
-            << " iterations;";
-  EXPECT_LT(std::abs(std::log(nav_sigma_m / realised_m)), std::log(1.5));
-  ASSERT_EQ(report["dive_offsets"].size(), 3u);
-  for (int dive = 2; dive <= 3; ++dive) {
-    const nlohmann::json& offset = report["dive_offsets"][dive - 1];
-    ASSERT_EQ(offset["dive"], dive);
-    ASSERT_TRUE(offset.contains("sigma_m")) << report["covariance_note"];
-    // The offset is added to the dive's navigation: it estimates
-    // -(bias - bias of dive 1).
-    const Eigen::Vector3d expected = bias_of(1) - bias_of(dive);
-    std::cout << " dive " << dive << " offset error";
+  EXPECT_EQ(chain.dives, (std::vector<int>{2, 3}));
+  for (size_t d = 0; d < chain.dives.size(); ++d) {
+    std::cout << " dive " << chain.dives[d] << " offset error "
+              << chain.offset_errors[d].transpose() << " m, "
+              << chain.offset_errors[d]
+                     .cwiseQuotient(chain.offset_sigmas[d])
+                     .transpose()
+              << " sigma";
     for (int k = 0; k < 3; ++k) {
-      const double error = offset["offset_m"][k].get<double>() - expected(k);
-      const double sigma = offset["sigma_m"][k].get<double>();
-      std::cout << " " << error << " (" << error / sigma << " sigma)";
-      EXPECT_LT(std::abs(error), 3.0 * sigma) << dive << " axis " << k;
+      EXPECT_LT(std::abs(chain.offset_errors[d](k)),
+                3.0 * chain.offset_sigmas[d](k))
+          << "dive " << chain.dives[d] << " axis " << k;
     }
   }
   std::cout << "\n";
+  return chain;
+}
+
+// On the vent. Until 2026-12-07 the robust initial alignment took one dive
+// and refused the log as paired with another time ("only 9 of the 24
+// positions agree"), and the noise estimate fitted the offsets and the
+// similarity in turn (on the scarp: 100 iterations, NO_CONVERGENCE, exit
+// 0, sigma_n 4.9x the realised noise).
+TEST(NavBundleAdjusterUwsim, ThreeDivesFarApartConvergeWithDefaultFlags) {
+  const testing::MultiDiveChain chain = ExpectThreeDivesFused(
+      "nav_ba_three_dives.json", "uw_nav_ba_three_dives", true);
+  EXPECT_TRUE(chain.warnings.empty()) << chain.output;
+}
+
+// On the seafloor, whose third dive shares no point that 3 images see with
+// the other two: the noise estimate leaves its images out, the report says
+// that dive 3's offset is its prior's, and every offset's sigma is that of
+// the problem solved (the priors as weighted). What does not hold here:
+// sigma_n stays 14x the realised noise, since the first two dives, tied
+// by few points, do not make an images-only model that is a similarity of
+// the truth; nothing detects that yet (docs/dev/issue17_plan.md). Before
+// the sigmas followed the weighting, dive 2's offset was 1.3 m off at
+// +- 0.29 m (4.6 sigma).
+TEST(NavBundleAdjusterUwsim, ADiveTheImagesDoNotTieIsNamed) {
+  const testing::MultiDiveChain chain = ExpectThreeDivesFused(
+      "nav_ba_three_dives_apart.json", "uw_nav_ba_three_dives_apart", false);
+  const std::string warnings = nlohmann::json(chain.warnings).dump();
+  EXPECT_NE(warnings.find("dive 3: none of its 20 images"), std::string::npos)
+      << warnings;
+  EXPECT_NE(warnings.find("the navigation's noise is estimated from the "
+                          "other 33"),
+            std::string::npos)
+      << warnings;
 }
 
 // Relative pose of each rig camera's image to the reference camera's image

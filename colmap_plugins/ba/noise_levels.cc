@@ -1,10 +1,15 @@
 #include "colmap_plugins/ba/noise_levels.h"
 
+#include <algorithm>
 #include <cmath>
+#include <set>
+
+#include <fmt/format.h>
 
 #include <Eigen/Cholesky>
 
 #include "colmap_plugins/ba/prior_alignment.h"
+#include "colmap_plugins/ba/scale_transfer.h"
 #include "common/util/error.h"
 
 namespace uw {
@@ -51,12 +56,36 @@ NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
   // turn: fitted in turn, the offsets and the similarity crawl along a
   // shallow valley when the dives lie apart, and a stop short of its floor
   // leaves the dives' biases in the residuals (similarity_with_offsets.h).
+  //
+  // Only the images that points seen by 3 images link into one group are a
+  // similarity of the truth: a group apart keeps a pose and scale of its
+  // own in the images-only adjustment, which the fit would count as
+  // navigation noise (a seafloor dive whose images share no such point
+  // with the others: sigma_n 2-14x the realised noise).
+  const std::vector<image_t> apart = ImagesWithoutScaleTransfer(images_only);
+  const std::set<image_t> apart_set(apart.begin(), apart.end());
+  std::vector<ImagePosePrior> linked;
   std::vector<Eigen::Vector3d> centres;
   for (const ImagePosePrior& prior : priors) {
+    if (apart_set.count(prior.image_id) != 0) continue;
+    linked.push_back(prior);
     centres.push_back(
         images_only.FindImage(prior.image_id)->ProjectionCenter());
   }
-  const SimilarityWithOffsets fit = FitToPriors(priors, centres, options);
+  if (linked.size() < priors.size()) {
+    levels.warnings.push_back(fmt::format(
+        "{} of the {} priors are of images that share no point that 3 images "
+        "see with the rest, whose pose and scale the images leave free: the "
+        "navigation's noise is estimated from the other {}",
+        priors.size() - linked.size(), priors.size(), linked.size()));
+  }
+  NavBundleAdjustmentOptions fit_options = options;
+  if (std::none_of(linked.begin(), linked.end(), [&](const auto& prior) {
+        return prior.dive == options.reference_dive;
+      })) {
+    fit_options.reference_dive = 0;  // the lowest dive left
+  }
+  const SimilarityWithOffsets fit = FitToPriors(linked, centres, fit_options);
   if (!fit.converged) {
     throw ErrorAt("the similarity",
                   options.dive_offsets ? " and dive offsets" : "",
@@ -71,9 +100,9 @@ NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
   const double num_offsets = options.dive_offsets
                                  ? static_cast<double>(fit.offsets.size()) - 1.0
                                  : 0.0;
-  levels.navigation_dof = 3.0 * priors.size() - 7.0 - 3.0 * num_offsets;
+  levels.navigation_dof = 3.0 * linked.size() - 7.0 - 3.0 * num_offsets;
   if (!(levels.navigation_dof > 0.0)) {
-    throw ErrorAt("the ", priors.size(),
+    throw ErrorAt("the ", linked.size(),
                   " navigation priors leave no degrees of freedom to "
                   "estimate their noise");
   }
