@@ -5,6 +5,7 @@
 #include <string>
 
 #include <ceres/ceres.h>
+#include <ceres/normal_prior.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
@@ -43,6 +44,12 @@ double ReciprocalCondition(ceres::Problem* problem,
 }  // namespace
 
 void SimilarityWithOffsetsOptions::Check() const {
+  if (!(offset_prior_sigma >= 0.0 && std::isfinite(offset_prior_sigma))) {
+    throw ErrorAt(
+        "SimilarityWithOffsetsOptions: offset_prior_sigma must be >= 0 (0: "
+        "none), got ",
+        offset_prior_sigma);
+  }
   if (max_iterations < 1) {
     throw ErrorAt("SimilarityWithOffsetsOptions: max_iterations must be >= 1, ",
                   "got ", max_iterations);
@@ -126,6 +133,13 @@ SimilarityWithOffsets EstimateSimilarityWithOffsets(
       problem.SetParameterBlockConstant(offset.data());
     } else {
       variable.push_back(offset.data());
+      if (options.offset_prior_sigma > 0.0) {
+        problem.AddResidualBlock(
+            new ceres::NormalPrior(
+                Eigen::Matrix3d::Identity() / options.offset_prior_sigma,
+                Eigen::Vector3d::Zero()),
+            nullptr, offset.data());
+      }
     }
   }
 

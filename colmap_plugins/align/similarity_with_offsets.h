@@ -30,6 +30,12 @@ struct SimilarityWithOffsetsOptions {
   // Levenberg-Marquardt steps; a fit that needs more is returned with
   // converged = false (the caller says what that means for it).
   int max_iterations = 100;
+  // > 0: each offset also has a zero-mean prior of this sigma (per axis, in
+  // the units of the targets), as the navigation-fused adjustment gives it
+  // (--Dive.offset_sigma); a fit without it would undo the prior's pull
+  // wherever the adjustment is placed by this fit. The chi-square excludes
+  // it.
+  double offset_prior_sigma = 0.0;
 
   void Check() const;
 };

@@ -163,6 +163,31 @@ TEST(EstimateSimilarityWithOffsets, OneGroupIsThePlainWeightedFit) {
   EXPECT_NEAR(fit.b_from_a.scale, TrueSim3().scale, 1e-9);
 }
 
+// The offsets' zero-mean prior (the adjustment's --Dive.offset_sigma) pulls
+// them in: a tight one holds them at zero, a loose one barely moves them.
+TEST(EstimateSimilarityWithOffsets, AnOffsetPriorPullsTheOffsetsToZero) {
+  std::vector<Eigen::Vector3d> model, navigation;
+  std::vector<Eigen::Matrix3d> covariances;
+  std::vector<int> dives;
+  MakeProblem(true, &model, &navigation, &covariances, &dives);
+  SimilarityWithOffsetsOptions options;
+  const SimilarityWithOffsets free = EstimateSimilarityWithOffsets(
+      model, navigation, covariances, dives, 1, options);
+  options.offset_prior_sigma = 10.0;
+  const SimilarityWithOffsets loose = EstimateSimilarityWithOffsets(
+      model, navigation, covariances, dives, 1, options);
+  options.offset_prior_sigma = 1e-6;
+  const SimilarityWithOffsets tight = EstimateSimilarityWithOffsets(
+      model, navigation, covariances, dives, 1, options);
+  for (const int dive : {2, 3}) {
+    EXPECT_LT((loose.offsets.at(dive) - free.offsets.at(dive)).norm(), 1e-4);
+    EXPECT_GT((loose.offsets.at(dive) - free.offsets.at(dive)).norm(), 0.0);
+    EXPECT_LT(tight.offsets.at(dive).norm(), 1e-4);
+  }
+  options.offset_prior_sigma = -1.0;
+  ExpectErrorContaining([&] { options.Check(); }, "offset_prior_sigma");
+}
+
 // Two dives, each one straight line, the lines parallel: dive 2's offset
 // across the lines trades with the rotation about them.
 TEST(EstimateSimilarityWithOffsets, RefusesParallelLinesAsUndetermined) {

@@ -857,12 +857,14 @@ void Adjustment::EstimateOffsetCovariance(NavBundleAdjustmentReport* report) {
   Weights weights;
   weights.reprojection = 1.0 / std::max(rms_px, 1e-6);
   weights.reprojection_loss_scale = options_.loss_scale_px / rms_px;
-  weights.nav = options_.weighting == NavWeighting::kLikelihood
-                    ? options_.weight_px_per_m * nav_sigma_m_ /
-                          std::max(rms_px, 1e-6)
-                    : 1.0;
+  const bool likelihood = options_.weighting == NavWeighting::kLikelihood;
+  weights.nav = likelihood ? options_.weight_px_per_m * nav_sigma_m_ /
+                                 std::max(rms_px, 1e-6)
+                           : 1.0;
   weights.nav_loss_scale = options_.nav_loss_scale * weights.nav;
-  weights.rig = 1.0;
+  // Rig terms as the adjustment weighted them too (pixel_sigma_ against
+  // reprojections weighted 1).
+  weights.rig = likelihood ? pixel_sigma_ / std::max(rms_px, 1e-6) : 1.0;
   ceres::Problem::Options problem_options;
   problem_options.manifold_ownership = ceres::TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
@@ -892,10 +894,13 @@ void Adjustment::EstimateOffsetCovariance(NavBundleAdjustmentReport* report) {
     report->covariance_note =
         "Ceres covariance of the offsets with each residual weighted by its "
         "own sigma (reprojection RMS " +
-        std::to_string(rms_px) +
-        " px per coordinate; priors as the adjustment weighted them: their "
-        "stated sigmas x " +
-        std::to_string(1.0 / weights.nav) + ")";
+        std::to_string(rms_px) + " px per coordinate; " +
+        (likelihood ? "priors and rig terms as the adjustment weighted them: "
+                      "the priors' stated sigmas x " +
+                          std::to_string(1.0 / weights.nav)
+                    : std::string("priors and rig terms by their stated "
+                                  "sigmas (thesis weighting)")) +
+        ")";
   }
   report->covariance_time_s =
       std::chrono::duration<double>(Clock::now() - start).count();
@@ -1078,7 +1083,9 @@ NavBundleAdjustmentReport Adjustment::Run() {
       break;
     }
   }
-  if (options_.unconverged == UnconvergedPolicy::kContinue) {
+  // 0 iterations asks for no solve: nothing to continue or fail.
+  if (options_.unconverged == UnconvergedPolicy::kContinue &&
+      options_.max_num_iterations > 0) {
     solver_options.max_num_iterations = options_.max_num_iterations;
     while (summary.termination_type == ceres::NO_CONVERGENCE &&
            report.num_continuations < options_.max_continuations) {
@@ -1097,7 +1104,8 @@ NavBundleAdjustmentReport Adjustment::Run() {
   if (summary.termination_type == ceres::NO_CONVERGENCE) {
     std::string reason =
         IterationLimitWarning(summary, options_.max_num_iterations);
-    if (options_.unconverged == UnconvergedPolicy::kWarn) {
+    if (options_.unconverged == UnconvergedPolicy::kWarn ||
+        options_.max_num_iterations == 0) {
       report.warnings.push_back(reason);
     } else {
       throw ErrorAt(

@@ -67,10 +67,14 @@ NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
   std::vector<ImagePosePrior> linked;
   std::vector<Eigen::Vector3d> centres;
   for (const ImagePosePrior& prior : priors) {
+    const Image* image = images_only.FindImage(prior.image_id);
+    if (image == nullptr) {
+      throw ErrorAt("a prior names image id ", prior.image_id,
+                    ", which is not in the model");
+    }
     if (apart_set.count(prior.image_id) != 0) continue;
     linked.push_back(prior);
-    centres.push_back(
-        images_only.FindImage(prior.image_id)->ProjectionCenter());
+    centres.push_back(image->ProjectionCenter());
   }
   if (linked.size() < priors.size()) {
     levels.warnings.push_back(fmt::format(
@@ -85,15 +89,19 @@ NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
       })) {
     fit_options.reference_dive = 0;  // the lowest dive left
   }
-  const SimilarityWithOffsets fit = FitToPriors(linked, centres, fit_options);
-  if (!fit.converged) {
-    throw ErrorAt("the similarity",
-                  options.dive_offsets ? " and dive offsets" : "",
-                  " from the images-only model to the navigation did not "
-                  "converge in ",
-                  fit.iterations,
-                  " steps, so the navigation's noise cannot be "
-                  "estimated; give --Nav.weight explicitly");
+  SimilarityWithOffsets fit;
+  try {
+    fit = FitToPriors(linked, centres, fit_options);
+  } catch (const Error& error) {
+    throw ErrorAt(
+        "the navigation's noise cannot be estimated from the ", linked.size(),
+        " priors of images the images link",
+        linked.size() < priors.size()
+            ? fmt::format(" ({} of {} left out: their images share no point "
+                          "that 3 images see with the rest)",
+                          priors.size() - linked.size(), priors.size())
+            : std::string(),
+        ": ", error.what(), "; give --Nav.weight explicitly");
   }
   if (options.dive_offsets) levels.dive_offsets = fit.offsets;
   const double chi2 = fit.chi_square;

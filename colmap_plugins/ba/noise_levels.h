@@ -46,9 +46,11 @@ struct NoiseLevels {
   double weight_px_per_m = 0.0;     // lambda = sigma_v / sigma_n
   double reprojection_dof = 0.0;
   double navigation_dof = 0.0;
-  // With options.dive_offsets: each dive's offset (added to its priors;
-  // the reference dive's zero) in the least-squares fit above, the start
-  // the adjustment takes for its own.
+  // With options.dive_offsets: each dive's offset (added to its priors) in
+  // the least-squares fit above, relative to the reference dive, or to the
+  // lowest dive left when the reference dive's images were left out; dives
+  // all of whose images were left out are missing. The adjuster does not
+  // read them (it fits its own start, nav_bundle_adjuster.cc).
   std::map<int, Eigen::Vector3d> dive_offsets;
   // The images-only adjustment's warnings (an unconverged solve above
   // all): the estimates come from its model.

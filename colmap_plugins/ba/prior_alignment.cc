@@ -104,9 +104,19 @@ SimilarityWithOffsets FitToPriors(const std::vector<ImagePosePrior>& priors,
           ? adjuster.reference_dive
           : *std::min_element(dives.begin(), dives.end());
   if (!adjuster.dive_offsets) dives.assign(dives.size(), reference_dive);
-  return EstimateSimilarityWithOffsets(centres, positions, covariances, dives,
-                                       reference_dive,
-                                       SimilarityWithOffsetsOptions());
+  SimilarityWithOffsetsOptions options;
+  if (adjuster.dive_offsets) {
+    options.offset_prior_sigma = adjuster.dive_offset_sigma_m;
+  }
+  SimilarityWithOffsets fit = EstimateSimilarityWithOffsets(
+      centres, positions, covariances, dives, reference_dive, options);
+  if (!fit.converged) {
+    throw ErrorAt(
+        "the similarity", adjuster.dive_offsets ? " and dive offsets" : "",
+        " from the model to the ", priors.size(),
+        " navigation priors did not converge in ", fit.iterations, " steps");
+  }
+  return fit;
 }
 
 SimilarityResult AlignToPriors(const std::vector<ImagePosePrior>& priors,

@@ -28,8 +28,9 @@ SimilarityResult AlignToPriors(
 // centres of the priors' images, in the priors' order) onto the priors'
 // positions, with adjuster.dive_offsets jointly with one offset per dive
 // but the reference one (adjuster.reference_dive; 0: the lowest dive
-// number), similarity_with_offsets.h. Throws as
-// EstimateSimilarityWithOffsets.
+// number) under the offsets' prior (adjuster.dive_offset_sigma_m),
+// similarity_with_offsets.h. Throws as EstimateSimilarityWithOffsets, and
+// when the fit does not converge.
 SimilarityWithOffsets FitToPriors(const std::vector<ImagePosePrior>& priors,
                                   const std::vector<Eigen::Vector3d>& centres,
                                   const NavBundleAdjustmentOptions& adjuster);
