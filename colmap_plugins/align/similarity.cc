@@ -19,8 +19,6 @@
 namespace uw {
 namespace {
 
-// 99.9 % quantile of the chi-square distribution with 3 degrees of freedom.
-constexpr double kChiSquare3Dof999 = 16.266;
 // RANSAC draws at least this many triples (or all there are).
 constexpr int kMinRansacIterations = 100;
 // Huber's 95 %-efficiency constant, in units of σ.

@@ -20,6 +20,10 @@
 
 namespace uw {
 
+// The robust fit's inlier threshold with covariances: the 99.9 % quantile
+// of the chi-square distribution with 3 degrees of freedom (4.03 sigma).
+constexpr double kChiSquare3Dof999 = 16.266;
+
 struct SimilarityOptions {
   // RANSAC + Huber refinement; otherwise every point is an inlier and the
   // fit is plain (weighted) least squares.

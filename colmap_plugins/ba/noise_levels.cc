@@ -67,14 +67,10 @@ NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
   std::vector<ImagePosePrior> linked;
   std::vector<Eigen::Vector3d> centres;
   for (const ImagePosePrior& prior : priors) {
-    const Image* image = images_only.FindImage(prior.image_id);
-    if (image == nullptr) {
-      throw ErrorAt("a prior names image id ", prior.image_id,
-                    ", which is not in the model");
-    }
+    const Eigen::Vector3d centre = CenterOfPriorImage(images_only, prior);
     if (apart_set.count(prior.image_id) != 0) continue;
     linked.push_back(prior);
-    centres.push_back(image->ProjectionCenter());
+    centres.push_back(centre);
   }
   if (linked.size() < priors.size()) {
     levels.warnings.push_back(fmt::format(

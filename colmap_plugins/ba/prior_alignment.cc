@@ -13,20 +13,6 @@
 namespace uw {
 namespace {
 
-// 99.9 % quantile of the chi-square distribution with 3 degrees of freedom:
-// the robust similarity's inlier threshold (similarity.h).
-constexpr double kChiSquare3Dof999 = 16.266;
-
-Eigen::Vector3d CenterOf(const Reconstruction& reconstruction,
-                         const ImagePosePrior& prior) {
-  const Image* image = reconstruction.FindImage(prior.image_id);
-  if (image == nullptr) {
-    throw ErrorAt("a prior names image id ", prior.image_id,
-                  ", which is not in the model");
-  }
-  return image->ProjectionCenter();
-}
-
 struct PriorSimilarity {
   SimilarityResult similarity;
   std::vector<Eigen::Vector3d> positions;  // of the priors, in their order
@@ -39,7 +25,7 @@ PriorSimilarity EstimateToPriors(const std::vector<ImagePosePrior>& priors,
   std::vector<Eigen::Matrix3d> covariances;
   PriorSimilarity result;
   for (const ImagePosePrior& prior : priors) {
-    centers.push_back(CenterOf(reconstruction, prior));
+    centers.push_back(CenterOfPriorImage(reconstruction, prior));
     result.positions.push_back(prior.position_in_world);
     covariances.push_back(prior.position_covariance);
   }
@@ -58,7 +44,7 @@ PriorSimilarity EstimateWithOffsetsToPriors(
   std::vector<Eigen::Vector3d> centers;
   PriorSimilarity result;
   for (const ImagePosePrior& prior : priors) {
-    centers.push_back(CenterOf(reconstruction, prior));
+    centers.push_back(CenterOfPriorImage(reconstruction, prior));
     result.positions.push_back(prior.position_in_world);
   }
   const SimilarityWithOffsets fit = FitToPriors(priors, centers, adjuster);
@@ -87,6 +73,16 @@ PriorSimilarity EstimateWithOffsetsToPriors(
 }
 
 }  // namespace
+
+Eigen::Vector3d CenterOfPriorImage(const Reconstruction& reconstruction,
+                                   const ImagePosePrior& prior) {
+  const Image* image = reconstruction.FindImage(prior.image_id);
+  if (image == nullptr) {
+    throw ErrorAt("a prior names image id ", prior.image_id,
+                  ", which is not in the model");
+  }
+  return image->ProjectionCenter();
+}
 
 SimilarityWithOffsets FitToPriors(const std::vector<ImagePosePrior>& priors,
                                   const std::vector<Eigen::Vector3d>& centres,

@@ -24,6 +24,11 @@ SimilarityResult AlignToPriors(
     const std::vector<ImagePosePrior>& priors, Reconstruction* reconstruction,
     const SimilarityOptions& options = SimilarityOptions());
 
+// The camera centre of the prior's image in `reconstruction`; throws
+// uw::Error naming the image id when the model lacks it.
+Eigen::Vector3d CenterOfPriorImage(const Reconstruction& reconstruction,
+                                   const ImagePosePrior& prior);
+
 // The least-squares fit of a similarity from `centres` (the model's camera
 // centres of the priors' images, in the priors' order) onto the priors'
 // positions, with adjuster.dive_offsets jointly with one offset per dive
