@@ -28,6 +28,9 @@ packages=(
   libfmt-dev
   # GeographicLib: lat/lon, UTM and heading in navigation logs (LocalCartesian)
   libgeographiclib-dev
+  # EXIF capture times (DateTimeOriginal, SubSec, OffsetTime) and the PNG
+  # chunk CRC
+  libexif-dev zlib1g-dev
   # mrcal 2.2: the C library uwcalib calibrates with, and its tools
   # (mrcal-calibrate-cameras, run by /usr/bin/python3) and chessboard finder
   # (mrgingham) that tests compare with

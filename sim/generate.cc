@@ -9,10 +9,12 @@
 #include "common/mesh/mesh.h"
 #include "common/mesh/ray_caster.h"
 #include "common/util/error.h"
+#include "common/util/exif_time.h"
 #include "common/util/file.h"
 #include "common/util/json_fields.h"
 #include "laserscale/laser_setup.h"
 #include "sim/laser_images.h"
+#include "sim/logs.h"
 #include "sim/rig.h"
 
 namespace uw::sim {
@@ -36,36 +38,38 @@ std::string RefImagesText(const std::vector<SurveyStation>& stations) {
   return text;
 }
 
-// image_name,time rows; `what` names the images in the comment line.
+// image_name,time rows on the logs' clock; `what` names the images in the
+// comment line.
 std::string TimesCsv(
     const std::string& what,
-    const std::vector<std::pair<std::string, double>>& name_times) {
-  std::string text = fmt::format(
-      "# uwsim {} times: seconds since the survey's start\n"
-      "image_name,time\n",
-      what);
+    const std::vector<std::pair<std::string, double>>& name_times,
+    const std::optional<double>& clock_start_s) {
+  std::string text = fmt::format("# uwsim {} times: {}\nimage_name,time\n",
+                                 what, LogTimeUnits(clock_start_s));
   for (const auto& [name, time_s] : name_times) {
-    text += fmt::format("{},{:.17g}\n", name, time_s);
+    text += fmt::format("{},{:.17g}\n", name, LogTime(clock_start_s, time_s));
   }
   return text;
 }
 
-std::string ImageTimesCsv(const std::vector<SurveyStation>& stations) {
+std::string ImageTimesCsv(const std::vector<SurveyStation>& stations,
+                          const std::optional<double>& clock_start_s) {
   std::vector<std::pair<std::string, double>> name_times;
   for (const SurveyStation& station : stations) {
     name_times.emplace_back(station.image_name, station.time_s);
   }
-  return TimesCsv("image", name_times);
+  return TimesCsv("image", name_times, clock_start_s);
 }
 
 // A user knows when each laser image was taken (its file's time stamp), so
 // that the navigation can place it before it is matched (add_laser_images.sh).
-std::string LaserImageTimesCsv(const std::vector<LaserShot>& shots) {
+std::string LaserImageTimesCsv(const std::vector<LaserShot>& shots,
+                               const std::optional<double>& clock_start_s) {
   std::vector<std::pair<std::string, double>> name_times;
   for (const LaserShot& shot : shots) {
     name_times.emplace_back(shot.name, shot.time_s);
   }
-  return TimesCsv("laser image", name_times);
+  return TimesCsv("laser image", name_times, clock_start_s);
 }
 
 // Camera k's images are images[k]; cameras[k] gets camera_id k + 1.
@@ -158,31 +162,36 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
   const bool jpeg = config.render.sensor.jpeg_quality > 0;
   // Frame k of the survey (laser images after the survey images) keys its
   // noise with index k.
-  const auto render = [&](const Renderer& renderer,
-                          const Rigid3d& cam_from_world,
-                          const FrameOptions& frame, const fs::path& path) {
-    const RenderedImage rendered =
-        renderer.Render(cam_from_world, config.seed, frames_done, frame);
-    // With JPEG the file is the very encoding the renderer decoded, so the
-    // image on disk is the one the noise model describes.
-    std::vector<uchar> bytes = rendered.jpeg;
-    if (!jpeg && !cv::imencode(".png", rendered.image, bytes)) {
-      throw ErrorAt("cannot encode image ", path.string());
-    }
-    WriteFilesAtomically({{path,
-                           [&bytes](std::ostream& stream) {
-                             stream.write(
-                                 reinterpret_cast<const char*>(bytes.data()),
-                                 bytes.size());
-                           }}},
-                         true);
-    ++frames_done;
-    if (progress) progress(frames_done, num_frames);
-  };
+  const std::optional<double> clock = config.logs.ClockStart();
+  const auto render =
+      [&](const Renderer& renderer, const Rigid3d& cam_from_world,
+          const FrameOptions& frame, double time_s, const fs::path& path) {
+        const RenderedImage rendered =
+            renderer.Render(cam_from_world, config.seed, frames_done, frame);
+        // With JPEG the file is the very encoding the renderer decoded, so the
+        // image on disk is the one the noise model describes.
+        std::vector<uchar> bytes = rendered.jpeg;
+        if (!jpeg && !cv::imencode(".png", rendered.image, bytes)) {
+          throw ErrorAt("cannot encode image ", path.string());
+        }
+        if (config.logs.exif_times) {
+          bytes = WithExifCaptureTime(bytes, LogTime(clock, time_s),
+                                      config.logs.CameraZoneOffset());
+        }
+        WriteFilesAtomically(
+            {{path,
+              [&bytes](std::ostream& stream) {
+                stream.write(reinterpret_cast<const char*>(bytes.data()),
+                             bytes.size());
+              }}},
+            true);
+        ++frames_done;
+        if (progress) progress(frames_done, num_frames);
+      };
   for (size_t k = 0; k < renderers.size(); ++k) {
     for (const SurveyStation& station : images[k]) {
       render(*renderers[k], station.cam_from_world, FrameOptions(),
-             out / "images" / station.image_name);
+             station.time_s, out / "images" / station.image_name);
     }
   }
 
@@ -199,9 +208,9 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
   nlohmann::json shots_truth = nlohmann::json::array();
   for (const LaserShot& shot : shots) {
     if (render_images) {
-      render(*renderers[0], shot.cam_from_world, lasers_on,
+      render(*renderers[0], shot.cam_from_world, lasers_on, shot.time_s,
              out / "laser_images" / shot.name);
-      render(*renderers[0], shot.aux_cam_from_world, aux_frame,
+      render(*renderers[0], shot.aux_cam_from_world, aux_frame, shot.time_s,
              out / "laser_images" / shot.aux_name);
     }
     shots_truth.push_back(LaserShotTruth(shot, true_lasers, config.lasers,
@@ -227,14 +236,22 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
   WritePly(world.mesh, out / "truth" / "mesh.ply",
            "uwsim world mesh; units: metres, world frame x east, y north, z "
            "up");
+  // The logs on their clock.
+  std::vector<NavigationRecord> logged = navigation;
+  std::vector<NavigationRecord> true_logged = TrueNavigation(stations);
+  for (std::vector<NavigationRecord>* records : {&logged, &true_logged}) {
+    for (NavigationRecord& record : *records) {
+      record.time_s = LogTime(clock, record.time_s);
+    }
+  }
+  const double site_depth_m = config.navigation.site_depth_m;
   std::vector<PendingFile> files = {
-      TextFile(out / "image_times.csv", ImageTimesCsv(all_images)),
-      TextFile(out / "laser_image_times.csv", LaserImageTimesCsv(shots)),
+      TextFile(out / "image_times.csv", ImageTimesCsv(all_images, clock)),
+      TextFile(out / "laser_image_times.csv", LaserImageTimesCsv(shots, clock)),
       TextFile(out / "nav.csv",
-               NavigationCsv(navigation, config.navigation.site_depth_m)),
+               NavigationCsv(logged, site_depth_m, LogTimeUnits(clock))),
       TextFile(out / "truth" / "nav.csv",
-               NavigationCsv(TrueNavigation(stations),
-                             config.navigation.site_depth_m)),
+               NavigationCsv(true_logged, site_depth_m, LogTimeUnits(clock))),
       TextFile(out / "truth" / "ref_images.txt", RefImagesText(all_images)),
       TextFile(out / "lasers.json",
                LasersJsonText({CalibratedLaserSetup(true_lasers, config.lasers,
@@ -243,6 +260,19 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
       TextFile(out / "truth" / "laser_images.json",
                laser_images_json.dump(2) + "\n"),
       TextFile(out / "truth" / "sim.json", sim_json.dump(2) + "\n")};
+  if (!config.logs.nav_formats.empty()) {
+    const LocalEnu local(config.logs.Origin(site_depth_m));
+    for (const std::string& format : config.logs.nav_formats) {
+      if (format == "nmea") {
+        files.push_back(
+            TextFile(out / "nav.nmea", NmeaNavigationLog(logged, local)));
+      } else {
+        files.push_back(
+            TextFile(out / ("nav_" + format + ".csv"),
+                     GeographicNavigationCsv(logged, local, format == "utm")));
+      }
+    }
+  }
   if (rig) {
     files.push_back(
         TextFile(out / "rig.json", RigJsonText(config.rig, true, config.seed)));

@@ -183,16 +183,16 @@ std::vector<NavigationRecord> NoisyNavigation(
 }
 
 std::string NavigationCsv(const std::vector<NavigationRecord>& records,
-                          double site_depth_m) {
+                          double site_depth_m, const std::string& time_units) {
   std::string csv = fmt::format(
       "# uwsim navigation: vehicle position x,y,z in m in the site's local "
       "East-North-Up frame whose origin is {0:.17g} m deep (depth = {0:.17g} "
       "- z); roll,pitch,yaw in deg with world_from_vehicle = "
       "Rz(yaw)*Ry(pitch)*Rx(roll), vehicle x forward, y left, z up; time in "
-      "s; std_* are 1-sigma\n"
+      "{1}; std_* are 1-sigma\n"
       "image_name,time,dive,x,y,z,roll,pitch,yaw,std_x,std_y,std_z,"
       "std_roll,std_pitch,std_yaw\n",
-      site_depth_m);
+      site_depth_m, time_units);
   const double to_deg = 180.0 / M_PI;
   for (const NavigationRecord& record : records) {
     csv += fmt::format("{},{:.17g},{}", record.image_name, record.time_s,

@@ -71,8 +71,10 @@ std::vector<NavigationRecord> NoisyNavigation(
 
 // nav.csv text: a comment header stating frame and units, then
 // image_name,time,dive,x,y,z,roll,pitch,yaw,std_x,std_y,std_z,std_roll,
-// std_pitch,std_yaw (angles in degrees).
-std::string NavigationCsv(const std::vector<NavigationRecord>& records,
-                          double site_depth_m);
+// std_pitch,std_yaw (angles in degrees). Times are written as the records
+// hold them; `time_units` says what they are (LogTimeUnits).
+std::string NavigationCsv(
+    const std::vector<NavigationRecord>& records, double site_depth_m,
+    const std::string& time_units = "seconds since the survey's start");
 
 }  // namespace uw::sim

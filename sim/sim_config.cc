@@ -32,6 +32,7 @@ void SimConfig::Check() const {
   world_options.Check();
   survey_options.Check();
   navigation.Check();
+  logs.Check();
   navigation.CheckNumDives(
       survey == SurveyKind::kMultiDive ? survey_options.num_dives : 1);
   render.Check();
@@ -48,6 +49,7 @@ void to_json(nlohmann::json& json, const SimConfig& config) {
           {"world_options", config.world_options},
           {"survey_options", config.survey_options},
           {"navigation", config.navigation},
+          {"logs", config.logs},
           {"render", config.render},
           {"lasers", config.lasers}};
 }
@@ -67,6 +69,7 @@ void from_json(const nlohmann::json& json, SimConfig& config) {
   fields.Read("world_options", &config.world_options);
   fields.Read("survey_options", &config.survey_options);
   fields.Read("navigation", &config.navigation);
+  fields.Read("logs", &config.logs);
   fields.Read("render", &config.render);
   fields.Read("lasers", &config.lasers);
   fields.RejectUnknown();

@@ -9,6 +9,7 @@
 
 #include "colmap_plugins/scene/model.h"
 #include "sim/laser.h"
+#include "sim/logs.h"
 #include "sim/navigation.h"
 #include "sim/renderer.h"
 #include "sim/rig.h"
@@ -26,6 +27,7 @@ struct SimConfig {
   WorldOptions world_options;
   SurveyOptions survey_options;
   NavigationOptions navigation;
+  LogOptions logs;
   RenderOptions render;
   LaserOptions lasers;
   RigOptions rig;  // more cameras besides `camera`

@@ -23,6 +23,9 @@ TEST(SimConfig, JsonRoundTripsEverySection) {
   config.navigation.dive_biases_m = {{1, 2, 0}};
   config.render.sensor.jpeg_quality = 80;
   config.lasers.every_nth_image = 2;
+  config.logs.clock_start = "2024-10-08T12:00:00+02:00";
+  config.logs.nav_formats = {"nmea", "utm"};
+  config.logs.geodetic_origin = "43.25,5.375";
   const nlohmann::json json = config;
   SimConfig read;
   json.get_to(read);
@@ -32,6 +35,7 @@ TEST(SimConfig, JsonRoundTripsEverySection) {
   EXPECT_EQ(read.seed, 12345678901234ull);
   EXPECT_EQ(read.camera.width, 640u);
   EXPECT_EQ(read.camera.camera_id, 1u);
+  EXPECT_EQ(read.logs.nav_formats, config.logs.nav_formats);
 }
 
 TEST(SimConfig, SectionsLeftOutKeepTheirDefaults) {

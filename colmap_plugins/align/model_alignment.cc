@@ -165,7 +165,8 @@ ModelAlignment AlignByClosestPoints(const Reconstruction& model,
     std::set<std::string> names;
     for (const Image& image : model.Images()) names.insert(image.name);
     std::vector<ImageTime> image_times;
-    for (const ImageTime& time : ReadImageTimesCsv(nav.image_times_path)) {
+    for (const ImageTime& time :
+         ReadImageTimesCsv(nav.image_times_path, nav.log.time_zone_offset_s)) {
       // Images the mapper dropped may lie anywhere in time.
       if (names.count(time.image_name) != 0) image_times.push_back(time);
     }

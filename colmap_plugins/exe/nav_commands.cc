@@ -2,8 +2,12 @@
 
 #include <iostream>
 
+#include <fmt/format.h>
+
 #include "colmap_plugins/exe/nav_flags.h"
 #include "common/util/error.h"
+#include "common/util/file.h"
+#include "common/util/time_text.h"
 
 namespace uw {
 namespace {
@@ -85,7 +89,106 @@ void RunPosePriorImporter(const PosePriorImporterOptions& options) {
   PrintSummary(options.database_path, options.import, summary);
 }
 
+void AddImageTimesFlags(CommandLine* cli, ImageTimesOptions* options) {
+  ImageTimesFromImagesOptions& images = options->images;
+  cli->Add("--image_path", &images.image_path,
+           "Folder of the images (as colmap's --image_path: every JPEG/PNG "
+           "below it, named relative to it)")
+      ->required();
+  cli->Add("--output_path", &options->output_path,
+           "image_times.csv to write (image_name,time in Unix seconds)")
+      ->required();
+  cli->Add<ImageTimeSource>(
+      "--source", &images.source,
+      "Where the times are: exif (DateTimeOriginal + SubSecTimeOriginal + "
+      "OffsetTimeOriginal) or filename (--filename_pattern)",
+      ImageTimeSourceFromName, ImageTimeSourceName);
+  cli->Add("--filename_pattern", &images.filename_pattern,
+           "With --source filename, the file name without extension: %Y %m "
+           "%d %H %M %S, %f (decimals), %z (zone), * (anything), e.g. "
+           "IMG_%Y%m%d_%H%M%S_%f");
+  AddTimeZoneFlag(cli, &images.time_zone_offset_s,
+                  "Zone (+hh:mm, -hh:mm or Z) of the camera clock, for times "
+                  "that do not state one; default: such times are an error");
+  cli->Add("--clock_offset", &images.clock_offset_s,
+           "Seconds added to every camera time (the camera clock's error "
+           "against the navigation's); or give it to pose_prior_importer as "
+           "--time_offset, not both");
+}
+
+void PrintImageTimesProgress(size_t done, size_t total) {
+  if (done % 100 != 0 && done != total) return;
+  fmt::print("\r[image_times] {}/{} images", done, total);
+  if (done == total) fmt::print("\n");
+  std::fflush(stdout);
+}
+
+void RunImageTimes(const ImageTimesOptions& options) {
+  const ImageTimesFromImages read =
+      ReadImageTimesFromImages(options.images, PrintImageTimesProgress);
+  const ImageTimesFromImagesOptions& images = options.images;
+  const std::string source =
+      images.source == ImageTimeSource::kExif
+          ? std::string("EXIF DateTimeOriginal")
+          : "file names (" + images.filename_pattern + ")";
+  std::string comment =
+      fmt::format("uwcolmap image_times: Unix time (s) from the {} of {}",
+                  source, images.image_path);
+  if (read.zone_assumed > 0) {
+    comment += fmt::format(", {} read on a clock at {}", read.zone_assumed,
+                           ZoneOffsetText(*images.time_zone_offset_s));
+  }
+  if (images.clock_offset_s != 0.0) {
+    comment += fmt::format(", clock offset {} s added",
+                           SecondsText(images.clock_offset_s));
+  }
+  const std::string text = ImageTimesCsvText(read.times, comment);
+  WriteFilesAtomically({{options.output_path,
+                         [&text](std::ostream& stream) { stream << text; }}},
+                       false);
+  double first = read.times.front().time_s;
+  double last = first;
+  for (const ImageTime& time : read.times) {
+    first = std::min(first, time.time_s);
+    last = std::max(last, time.time_s);
+  }
+  fmt::print("[image_times] wrote {}: {} images from {}, {} to {} (span {})\n",
+             options.output_path, read.times.size(), source, TimeText(first),
+             TimeText(last), DurationText(last - first));
+  if (read.zone_assumed > 0) {
+    std::cerr << "WARNING: " << read.zone_assumed << " of " << read.times.size()
+              << " images do not state their clock's zone; they were read "
+                 "at --time_zone "
+              << ZoneOffsetText(*images.time_zone_offset_s) << "\n";
+  }
+}
+
 }  // namespace
+
+void ImageTimesOptions::Check() const {
+  if (output_path.empty()) throw ErrorAt("--output_path is required");
+  images.Check();
+}
+
+Subcommand ImageTimesCommand() {
+  return MakeSubcommand<ImageTimesOptions>(
+      "image_times", "write image_times.csv from the images' EXIF or names",
+      "Writes image_times.csv (image_name,time; docs/formats.md) for every "
+      "image below --image_path, named as colmap's database names them, "
+      "with the time each was taken as Unix time (UTC): from its EXIF "
+      "(DateTimeOriginal, SubSecTimeOriginal and OffsetTimeOriginal, in "
+      "JPEG and PNG) or from its file name. A camera clock's zone comes "
+      "from the image; where the image states none it must be given "
+      "(--time_zone), as a local clock is hours of ambiguity. An image "
+      "without a time is an error naming it. The file is then what "
+      "pose_prior_importer, bundle_adjuster and model_aligner take as "
+      "--image_times.\n\n"
+      "Example (a camera set to local time in summer in Marseille, 0.4 s "
+      "behind the navigation's GPS clock):\n"
+      "  uwcolmap image_times --image_path images --output_path "
+      "image_times.csv --time_zone +02:00 --clock_offset 0.4",
+      AddImageTimesFlags, RunImageTimes);
+}
 
 void PosePriorImporterOptions::Check() const {
   if (coordinate_system != "cartesian") {

@@ -1,5 +1,7 @@
 #include "colmap_plugins/exe/nav_flags.h"
 
+#include "common/util/time_text.h"
+
 namespace uw {
 
 void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
@@ -49,10 +51,26 @@ void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
       NavLogFormatFromName, NavLogFormatName);
   cli->Add("--nmea_date", &options->log.nmea.date,
            "UTC date YYYY-MM-DD of an NMEA log without RMC or ZDA sentences");
+  AddTimeZoneFlag(cli, &options->log.time_zone_offset_s,
+                  "Zone (+hh:mm, -hh:mm or Z) of the clock that wrote ISO "
+                  "8601 times without one in --nav and --image_times; "
+                  "default: such times are an error");
   cli->Add("--unlogged_roll_pitch_sigma",
            &nav_to_camera.unlogged_roll_pitch_sigma_deg,
            "Sigma (deg) of the roll and pitch a log with heading but no roll "
            "and pitch is taken to have (0), carried through the lever arm");
+}
+
+void AddTimeZoneFlag(CommandLine* cli, std::optional<int>* offset_s,
+                     const std::string& help) {
+  cli->Add<std::optional<int>>(
+      "--time_zone", offset_s, help,
+      [](const std::string& text) {
+        return std::optional<int>(ParseZoneOffset(text, "--time_zone"));
+      },
+      [](const std::optional<int>& offset) {
+        return offset ? ZoneOffsetText(*offset) : std::string("none");
+      });
 }
 
 void AddPlausibilityFlags(CommandLine* cli,

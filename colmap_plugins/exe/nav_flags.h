@@ -4,6 +4,7 @@
 // the vehicle, bound to PosePriorImportOptions.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "colmap_plugins/align/alignment_plausibility.h"
@@ -17,6 +18,11 @@ namespace uw {
 // --Rig.config), --mount, --lever_arm, --boresight and --time_offset.
 void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
                  bool nav_required, const std::string& rig_flag);
+
+// Adds --time_zone (+hh:mm, -hh:mm or Z) bound to `offset_s` (seconds
+// east of UTC; none by default).
+void AddTimeZoneFlag(CommandLine* cli, std::optional<int>* offset_s,
+                     const std::string& help);
 
 // Adds <prefix>min_range, <prefix>max_range and <prefix>accept_implausible
 // (model_aligner: "--"; bundle_adjuster, lcurve: "--Nav.").

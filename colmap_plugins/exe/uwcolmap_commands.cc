@@ -17,7 +17,7 @@ const std::vector<Subcommand>& UwcolmapCommands() {
       LCurveCommand(),           ModelAlignerCommand(),
       ModelAnalyzerCommand(),    ModelConverterCommand(),
       ModelComparerCommand(),    PosePriorImporterCommand(),
-      SurveyReportCommand(),
+      ImageTimesCommand(),       SurveyReportCommand(),
   };
   return commands;
 }

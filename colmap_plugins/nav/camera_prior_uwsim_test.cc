@@ -13,7 +13,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
-#include <GeographicLib/UTMUPS.hpp>
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/nav/camera_prior.h"
@@ -228,119 +227,106 @@ TEST(CameraPriorUwsim, MultiDiveImagesFindTheirDives) {
   EXPECT_EQ(errors.reference.count, 24u);
 }
 
-// uwsim's local log as a WGS84 one (lat,lon,depth or UTM), as a USBL or a
-// GPS writes it: each fix's heading is taken clockwise from its own north.
-void WriteGeographicLog(const std::vector<NavRecord>& nav,
-                        const LocalEnu& local, bool utm, const fs::path& path) {
-  std::string text =
-      std::string("image_name,time,dive,") +
-      (utm ? "easting,northing,zone" : "lat,lon") +
-      ",depth,roll,pitch,heading,std_x,std_y,std_z,std_roll,std_pitch,"
-      "std_heading\n";
-  constexpr double kRadToDeg = 180.0 / M_PI;
-  for (const NavRecord& record : nav) {
-    const Eigen::Vector3d fix = local.ToGeodetic(record.position);
-    std::string where = fmt::format("{:.17g},{:.17g}", fix(0), fix(1));
-    if (utm) {
-      int zone = 0;
-      bool north = true;
-      double easting = 0.0;
-      double northing = 0.0;
-      GeographicLib::UTMUPS::Forward(fix(0), fix(1), zone, north, easting,
-                                     northing);
-      where = fmt::format("{:.17g},{:.17g},{}{}", easting, northing, zone,
-                          north ? "n" : "s");
+// The largest differences between two lists of priors of the same images.
+struct PriorDifferences {
+  double centre = 0.0;      // m
+  double angle = 0.0;       // rad, where both have a rotation
+  double covariance = 0.0;  // m^2, position covariance (Frobenius)
+};
+
+PriorDifferences Compare(const std::vector<CameraPrior>& priors,
+                         const std::vector<CameraPrior>& local_priors) {
+  EXPECT_EQ(priors.size(), local_priors.size());
+  PriorDifferences difference;
+  for (size_t i = 0; i < std::min(priors.size(), local_priors.size()); ++i) {
+    EXPECT_EQ(priors[i].cam_from_world_rotation.has_value(),
+              local_priors[i].cam_from_world_rotation.has_value());
+    difference.centre =
+        std::max(difference.centre,
+                 (priors[i].position - local_priors[i].position).norm());
+    if (priors[i].cam_from_world_rotation &&
+        local_priors[i].cam_from_world_rotation) {
+      difference.angle = std::max(
+          difference.angle, priors[i].cam_from_world_rotation->angularDistance(
+                                *local_priors[i].cam_from_world_rotation));
     }
-    const double heading =
-        local.HeadingFromYaw(record.rpy_rad(2) * kRadToDeg, record.position);
-    text += fmt::format(
-        "{},{:.17g},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},"
-        "{:.17g},{:.17g},{:.17g},{:.17g}\n",
-        record.image_name, record.time_s, record.dive, where, -fix(2),
-        record.rpy_rad(0) * kRadToDeg, record.rpy_rad(1) * kRadToDeg, heading,
-        record.position_sigma(0), record.position_sigma(1),
-        record.position_sigma(2), record.rpy_sigma_rad(0) * kRadToDeg,
-        record.rpy_sigma_rad(1) * kRadToDeg,
-        record.rpy_sigma_rad(2) * kRadToDeg);
+    difference.covariance = std::max(
+        difference.covariance,
+        (priors[i].position_covariance - local_priors[i].position_covariance)
+            .norm());
   }
-  std::ofstream(path, std::ios::binary) << text;
+  return difference;
 }
 
-// Acceptance 1 (issue 17): a survey's log written as WGS84 lat,lon,depth and
-// as UTM, read at the origin it was written at, gives the priors of its
-// local log to < 1 mm and 1e-6 rad (here, to rounding). The origin is put
-// far from the equator and the survey 20 km east of it, so that north at
-// the fixes is turned by the meridians' convergence (0.2 deg at 60 deg N).
+// Acceptance 1 (issue 17): a uwsim survey with a rig, on a real clock,
+// written as WGS84 lat,lon,depth and as UTM (uwsim's logs.nav_formats):
+// read at the origin uwsim states, each gives the priors of its local
+// nav.csv to < 1 mm and 1e-6 rad with the same covariances. The site lies
+// at 60.25 deg N, where a heading error from the meridians' convergence or
+// the ellipsoid's radii would show.
 TEST(CameraPriorUwsim, AGeographicLogGivesTheLocalLogsPriors) {
   sim::SimConfig config = sim::SmallSimConfig();
   config.survey_options.max_images = 16;
   config.lasers.every_nth_image = 0;
   config.rig = TestRig();
+  config.logs.clock_start = "2024-10-08T12:00:00+02:00";
+  config.logs.geodetic_origin = "60.25,5.125";
+  config.logs.nav_formats = {"wgs84", "utm"};
   const fs::path dir = testing::FreshTestDir("uw_prior_uwsim_geographic");
   sim::Generate(config, dir / "sim");
-  NavToCameraOptions options = CameraOnVehicle(dir / "sim", CameraMount::kDown);
+  const NavToCameraOptions options =
+      CameraOnVehicle(dir / "sim", CameraMount::kDown);
   const std::vector<ImageTime> times =
       ReadImageTimesCsv(dir / "sim" / "image_times.csv");
+  EXPECT_NEAR(times.front().time_s, 1728381600.0, 60.0);  // 10:00Z
   const RigConfig rig = ReadRigConfig(dir / "sim" / "truth" / "rig.json");
-  std::vector<NavRecord> nav =
-      ReadNavigationCsv(dir / "sim" / "truth" / "nav.csv");
-  for (NavRecord& record : nav) record.position.x() += 20000.0;
-  const std::vector<CameraPrior> local_priors =
-      CameraPriorsFromNavigation(nav, &times, options, &rig);
+  const std::vector<CameraPrior> local_priors = CameraPriorsFromNavigation(
+      ReadNavigationCsv(dir / "sim" / "nav.csv"), &times, options, &rig);
 
-  const GeoOrigin origin{60.25, 5.125, 0.0};
-  const LocalEnu local(origin);
-  for (const bool utm : {false, true}) {
-    const fs::path path = dir / (utm ? "nav_utm.csv" : "nav_latlon.csv");
-    WriteGeographicLog(nav, local, utm, path);
+  const GeoOrigin origin = config.logs.Origin(config.navigation.site_depth_m);
+  for (const std::string format : {"wgs84", "utm"}) {
+    const fs::path path = dir / "sim" / ("nav_" + format + ".csv");
     NavLogFrame frame;
     const std::vector<NavRecord> geographic =
         ReadNavigationCsv(path, origin, &frame);
-    EXPECT_EQ(frame.position_columns,
-              utm ? "easting,northing,zone,depth" : "lat,lon,depth");
-    ASSERT_TRUE(frame.origin);
-    EXPECT_FALSE(frame.origin_automatic);
-    const std::vector<CameraPrior> priors =
-        CameraPriorsFromNavigation(geographic, &times, options, &rig);
-    ASSERT_EQ(priors.size(), local_priors.size());
-    double centre = 0.0;
-    double angle = 0.0;
-    double covariance = 0.0;
-    for (size_t i = 0; i < priors.size(); ++i) {
-      centre = std::max(centre,
-                        (priors[i].position - local_priors[i].position).norm());
-      angle =
-          std::max(angle, priors[i].cam_from_world_rotation->angularDistance(
-                              *local_priors[i].cam_from_world_rotation));
-      covariance = std::max(covariance, (priors[i].position_covariance -
-                                         local_priors[i].position_covariance)
-                                            .norm());
-    }
+    EXPECT_EQ(frame.position_columns, format == "utm"
+                                          ? "easting,northing,zone,depth"
+                                          : "lat,lon,depth");
+    const PriorDifferences difference =
+        Compare(CameraPriorsFromNavigation(geographic, &times, options, &rig),
+                local_priors);
     std::cout << "[ figures ] " << path.filename().string() << ": "
-              << priors.size() << " priors, largest differences from the "
-              << "local log's: centre " << centre << " m, rotation " << angle
-              << " rad, position covariance " << covariance << " m^2\n";
-    EXPECT_LT(centre, 1e-3);
-    EXPECT_LT(angle, 1e-6);
-    EXPECT_LT(covariance, 1e-9);
+              << local_priors.size() << " priors, largest differences from "
+              << "nav.csv's: centre " << difference.centre << " m, rotation "
+              << difference.angle << " rad, position covariance "
+              << difference.covariance << " m^2\n";
+    EXPECT_LT(difference.centre, 1e-3);
+    EXPECT_LT(difference.angle, 1e-6);
+    EXPECT_LT(difference.covariance, 1e-9);
   }
 }
 
-// The same survey as a GPS/USBL logger's NMEA: GGA fixes (minutes to 1e-8,
-// 0.02 mm), an HDT heading before each, the date from ZDA, the survey's
-// clock starting at 12:00Z. NMEA has no roll, pitch or sigmas, so the local
-// log is compared with those dropped too; the priors agree to < 1 mm.
+// The same as a GPS/USBL logger's NMEA (uwsim's "nmea": GGA fixes with
+// minutes to 1e-8, an HDT heading before each, ZDA dates), south and west
+// of Greenwich, the survey running past midnight UTC so that the date
+// changes within the log. NMEA has no roll, pitch, sigmas or image names,
+// so nav.csv is compared with those dropped too: the priors agree to
+// < 1 mm, and each fix's time is the log's to the microsecond.
 TEST(CameraPriorUwsim, AnNmeaLogGivesTheLocalLogsPriors) {
   sim::SimConfig config = sim::SmallSimConfig();
   config.survey_options.max_images = 16;
   config.lasers.every_nth_image = 0;
+  config.logs.clock_start = "2024-10-08T23:59:50Z";
+  config.logs.geodetic_origin = "-12.25,-130.75";
+  config.logs.nav_formats = {"nmea"};
   const fs::path dir = testing::FreshTestDir("uw_prior_uwsim_nmea");
   sim::Generate(config, dir / "sim");
-  NavToCameraOptions options = CameraOnVehicle(dir / "sim", CameraMount::kDown);
+  const NavToCameraOptions options =
+      CameraOnVehicle(dir / "sim", CameraMount::kDown);
   const std::vector<ImageTime> times =
       ReadImageTimesCsv(dir / "sim" / "image_times.csv");
-  std::vector<NavRecord> nav =
-      ReadNavigationCsv(dir / "sim" / "truth" / "nav.csv");
+  std::vector<NavRecord> nav = ReadNavigationCsv(dir / "sim" / "nav.csv");
+  ASSERT_GT(nav.back().time_s, *UnixTimeOfDay(2024, 10, 9));
   for (NavRecord& record : nav) {
     record.image_name.clear();
     record.has_roll_pitch = false;
@@ -351,63 +337,27 @@ TEST(CameraPriorUwsim, AnNmeaLogGivesTheLocalLogsPriors) {
   const std::vector<CameraPrior> local_priors =
       CameraPriorsFromNavigation(nav, &times, options, nullptr);
 
-  const GeoOrigin origin{-12.25, 130.75, 0.0};
-  const LocalEnu local(origin);
-  const double start = *UnixTimeOfDay(2024, 10, 8) + 12 * 3600.0;
-  std::string text = "# uwsim's survey as NMEA\n";
-  const auto sentence = [&](const std::string& body) {
-    unsigned checksum = 0;
-    for (const char c : body) checksum ^= static_cast<unsigned char>(c);
-    text += fmt::format("${}*{:02X}\n", body, checksum);
-  };
-  sentence("GPZDA,120000.000000,08,10,2024,00,00");
-  for (const NavRecord& record : nav) {
-    const Eigen::Vector3d fix = local.ToGeodetic(record.position);
-    const double t = 12 * 3600.0 + record.time_s;
-    const int hours = static_cast<int>(t / 3600.0);
-    const int minutes = static_cast<int>((t - 3600.0 * hours) / 60.0);
-    const double seconds = t - 3600.0 * hours - 60.0 * minutes;
-    const auto dm = [](double degrees) {
-      const double whole = std::floor(std::abs(degrees));
-      return 100.0 * whole + (std::abs(degrees) - whole) * 60.0;
-    };
-    sentence(fmt::format("HEHDT,{:.8f},T",
-                         local.HeadingFromYaw(record.rpy_rad(2) * 180.0 / M_PI,
-                                              record.position)));
-    sentence(fmt::format(
-        "GPGGA,{:02d}{:02d}{:09.6f},{:013.8f},{},{:014.8f},{},1,12,0.8,{:.6f},"
-        "M,0.0,M,,",
-        hours, minutes, seconds, dm(fix(0)), fix(0) < 0 ? "S" : "N", dm(fix(1)),
-        fix(1) < 0 ? "W" : "E", fix(2)));
-  }
-  std::ofstream(dir / "nav.nmea", std::ios::binary) << text;
   NavLogOptions log;
-  log.origin = origin;
+  log.origin = config.logs.Origin(config.navigation.site_depth_m);
   NavLogFrame frame;
   const std::vector<NavRecord> nmea =
-      ReadNavigationLog(dir / "nav.nmea", log, &frame);
+      ReadNavigationLog(dir / "sim" / "nav.nmea", log, &frame);
   EXPECT_EQ(frame.position_columns, "NMEA GGA");
   ASSERT_EQ(nmea.size(), nav.size());
-  EXPECT_EQ(nmea.front().time_s, start + nav.front().time_s);
-  options.time_offset_s = start;
-  const std::vector<CameraPrior> priors =
-      CameraPriorsFromNavigation(nmea, &times, options, nullptr);
-  ASSERT_EQ(priors.size(), local_priors.size());
-  double centre = 0.0;
-  double covariance = 0.0;
-  for (size_t i = 0; i < priors.size(); ++i) {
-    EXPECT_FALSE(priors[i].cam_from_world_rotation);
-    centre = std::max(centre,
-                      (priors[i].position - local_priors[i].position).norm());
-    covariance = std::max(covariance, (priors[i].position_covariance -
-                                       local_priors[i].position_covariance)
-                                          .norm());
+  double time_error = 0.0;
+  for (size_t i = 0; i < nav.size(); ++i) {
+    time_error = std::max(time_error, std::abs(nmea[i].time_s - nav[i].time_s));
   }
-  std::cout << "[ figures ] nav.nmea: " << priors.size()
-            << " priors, largest differences from the local log's: centre "
-            << centre << " m, position covariance " << covariance << " m^2\n";
-  EXPECT_LT(centre, 1e-3);
-  EXPECT_LT(covariance, 1e-9);
+  EXPECT_LT(time_error, 1e-6);
+  const PriorDifferences difference = Compare(
+      CameraPriorsFromNavigation(nmea, &times, options, nullptr), local_priors);
+  std::cout << "[ figures ] nav.nmea: " << local_priors.size()
+            << " priors, largest differences from nav.csv's: centre "
+            << difference.centre << " m, position covariance "
+            << difference.covariance << " m^2, fix times " << time_error
+            << " s\n";
+  EXPECT_LT(difference.centre, 1e-3);
+  EXPECT_LT(difference.covariance, 1e-9);
 }
 
 }  // namespace

@@ -7,7 +7,8 @@
 
 namespace uw {
 
-std::vector<ImageTime> ReadImageTimesCsv(const std::filesystem::path& path) {
+std::vector<ImageTime> ReadImageTimesCsv(
+    const std::filesystem::path& path, std::optional<int> time_zone_offset_s) {
   const CsvTable table = CsvTable::Read(path, {"image_name", "time", "dive"},
                                         {"image_name", "time"});
   if (table.NumRows() == 0) throw ErrorAt(path.string(), ": no image rows");
@@ -21,7 +22,7 @@ std::vector<ImageTime> ReadImageTimesCsv(const std::filesystem::path& path) {
     if (time.image_name.empty()) {
       throw ErrorAt(table.Where(row), ": empty image_name");
     }
-    time.time_s = table.Double(row, "time");
+    time.time_s = table.Time(row, "time", time_zone_offset_s);
     if (has_dives) time.dive = table.Int(row, "dive", 1);
     const auto [previous, inserted] =
         line_of_image.emplace(time.image_name, time.line);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,8 +21,11 @@ struct ImageTime {
 };
 
 // Reads image_times.csv strictly: header image_name,time[,dive] (any
-// order), non-empty unique names, finite times, dives integers >= 1.
-// Throws uw::Error naming the file and line.
-std::vector<ImageTime> ReadImageTimesCsv(const std::filesystem::path& path);
+// order), non-empty unique names, times in seconds or ISO 8601 (a time
+// without a zone on the clock `time_zone_offset_s` east of UTC), dives
+// integers >= 1. Throws uw::Error naming the file and line.
+std::vector<ImageTime> ReadImageTimesCsv(
+    const std::filesystem::path& path,
+    std::optional<int> time_zone_offset_s = std::nullopt);
 
 }  // namespace uw

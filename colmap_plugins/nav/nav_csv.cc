@@ -104,9 +104,9 @@ void CheckColumnSets(const CsvTable& table) {
 
 }  // namespace
 
-std::vector<NavRecord> ReadNavigationCsv(const std::filesystem::path& path,
-                                         const std::optional<GeoOrigin>& origin,
-                                         NavLogFrame* frame) {
+std::vector<NavRecord> ReadNavigationCsv(
+    const std::filesystem::path& path, const std::optional<GeoOrigin>& origin,
+    NavLogFrame* frame, std::optional<int> time_zone_offset_s) {
   const std::vector<std::string> columns = {
       "image_name", "time",  "dive",     "x",         "y",       "z",
       "lat",        "lon",   "depth",    "alt",       "easting", "northing",
@@ -188,7 +188,7 @@ std::vector<NavRecord> ReadNavigationCsv(const std::filesystem::path& path,
       record.image_name = table.Text(row, "image_name");
       if (record.image_name.empty()) throw ErrorAt(where, ": empty image_name");
     }
-    record.time_s = table.Double(row, "time");
+    record.time_s = table.Time(row, "time", time_zone_offset_s);
     if (has_dives) record.dive = table.Int(row, "dive", 1);
     record.has_roll_pitch = has_roll_pitch;
     record.has_yaw = has_yaw;

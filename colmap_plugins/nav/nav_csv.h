@@ -59,6 +59,8 @@ struct NavLogFrame {
 // A geographic log is read into LocalEnu at `origin` (AutomaticOrigin of
 // its first row when not given); its heading or yaw is taken at each fix
 // (LocalEnu::YawFromHeading). `origin` with an x,y,z log is an error.
+// `time` is seconds or ISO 8601 (ParseTimeField; a time without a zone is
+// on the clock `time_zone_offset_s` east of UTC, an error when not given).
 // Every value is a finite number, dives are integers >= 1, sigmas >= 0,
 // image names are non-empty and unique, and within a dive the rows come in
 // strictly increasing time. Sigmas not given read 0. Throws uw::Error
@@ -66,6 +68,7 @@ struct NavLogFrame {
 std::vector<NavRecord> ReadNavigationCsv(
     const std::filesystem::path& path,
     const std::optional<GeoOrigin>& origin = std::nullopt,
-    NavLogFrame* frame = nullptr);
+    NavLogFrame* frame = nullptr,
+    std::optional<int> time_zone_offset_s = std::nullopt);
 
 }  // namespace uw

@@ -103,6 +103,26 @@ TEST_F(NavCsvTest, PositionOnlyLogsAreRead) {
   EXPECT_EQ(levelled[0].rpy_sigma_rad, Eigen::Vector3d::Zero());
 }
 
+// Loggers write ISO 8601 times (a USBL export's "2024-10-08T17:53:20.25Z");
+// they are read as Unix time, the zone applied; one without a zone needs
+// the clock's zone, or it would be a guess hours off.
+TEST_F(NavCsvTest, IsoTimesAreReadAsUnixTimes) {
+  const std::vector<NavRecord> nav = Read(
+      "time,x,y,z\n2024-10-08T17:53:20.25Z,1,2,3\n"
+      "2024-10-08T19:53:21.5+02:00,4,5,6\n1728410002,7,8,9\n");
+  ASSERT_EQ(nav.size(), 3u);
+  EXPECT_EQ(nav[0].time_s, 1728410000.25);
+  EXPECT_EQ(nav[1].time_s, 1728410001.5);
+  EXPECT_EQ(nav[2].time_s, 1728410002.0);
+  const std::string local = "time,x,y,z\n2024-10-08 10:53:20,1,2,3\n";
+  EXPECT_NE(Error(local).find(":2: time: '2024-10-08 10:53:20' has no time "
+                              "zone"),
+            std::string::npos);
+  EXPECT_EQ(
+      ReadNavigationCsv(path_, std::nullopt, nullptr, -7 * 3600)[0].time_s,
+      1728410000.0);
+}
+
 // Heading turns clockwise from north; yaw counter-clockwise from east.
 TEST_F(NavCsvTest, HeadingIsReadAsYaw) {
   const std::vector<NavRecord> nav = Read(

@@ -37,7 +37,8 @@ std::vector<NavRecord> ReadNavigationLog(const std::filesystem::path& path,
       options.format == NavLogFormat::kNmea ||
       (options.format == NavLogFormat::kAuto && LooksLikeNmea(path));
   return nmea ? ReadNmeaLog(path, options.nmea, options.origin, frame)
-              : ReadNavigationCsv(path, options.origin, frame);
+              : ReadNavigationCsv(path, options.origin, frame,
+                                  options.time_zone_offset_s);
 }
 
 }  // namespace uw

@@ -26,6 +26,9 @@ struct NavLogOptions {
   // first fix.
   std::optional<GeoOrigin> origin;
   NmeaOptions nmea;
+  // Seconds east of UTC of the clock that wrote ISO 8601 times without a
+  // zone (nav.csv and image_times.csv); none: such times are an error.
+  std::optional<int> time_zone_offset_s;
 
   void Check() const;
 };

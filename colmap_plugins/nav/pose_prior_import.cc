@@ -101,7 +101,8 @@ LoadedCameraPriors LoadCameraPriors(
   std::vector<ImageTime> image_times;
   if (!options.image_times_path.empty()) {
     sources.image_times = options.image_times_path.string();
-    image_times = ReadImageTimesCsv(options.image_times_path);
+    image_times = ReadImageTimesCsv(options.image_times_path,
+                                    options.log.time_zone_offset_s);
   }
   if (!options.rig_config_path.empty()) {
     loaded.rig = ReadRigConfig(options.rig_config_path);

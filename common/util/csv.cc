@@ -8,6 +8,7 @@
 #include "common/util/error.h"
 #include "common/util/file.h"
 #include "common/util/number_text.h"
+#include "common/util/time_text.h"
 
 namespace uw {
 
@@ -248,6 +249,12 @@ double CsvTable::Double(size_t row, const std::string& column) const {
                   field, "'");
   }
   return *value;
+}
+
+double CsvTable::Time(size_t row, const std::string& column,
+                      std::optional<int> zone_offset_s) const {
+  return ParseTimeField(Text(row, column), Where(row) + ": " + column,
+                        zone_offset_s);
 }
 
 std::optional<double> CsvTable::Number(size_t row,

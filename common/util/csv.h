@@ -52,6 +52,10 @@ class CsvTable {
   // A finite number; spaces and tabs around it (a quoted export's " 12.5 ")
   // are allowed.
   double Double(size_t row, const std::string& column) const;
+  // A time: seconds as a number, or ISO 8601 (ParseTimeField) read on the
+  // clock `zone_offset_s` east of UTC when it states no zone.
+  double Time(size_t row, const std::string& column,
+              std::optional<int> zone_offset_s = std::nullopt) const;
   // A finite number, or nullopt when the field is empty or blank.
   std::optional<double> Number(size_t row, const std::string& column) const;
   // A finite number >= 0.

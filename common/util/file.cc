@@ -94,7 +94,7 @@ bool IsImageFile(const std::filesystem::path& path) {
 
 std::vector<std::string> ListImages(
     const std::filesystem::path& images_dir, const std::string& image_list_path,
-    const std::function<bool(const std::string&)>& keep) {
+    const std::function<bool(const std::string&)>& keep, bool recursive) {
   std::vector<std::string> names;
   if (!image_list_path.empty()) {
     std::ifstream in(image_list_path);
@@ -108,12 +108,23 @@ std::vector<std::string> ListImages(
     return names;
   }
   std::error_code error;
-  for (const auto& entry :
-       std::filesystem::directory_iterator(images_dir, error)) {
-    const std::string name = entry.path().filename().string();
+  const auto add = [&](const std::filesystem::directory_entry& entry) {
+    const std::string name =
+        entry.path().lexically_relative(images_dir).generic_string();
     if (entry.is_regular_file() && IsImageFile(entry.path()) &&
         (!keep || keep(name))) {
       names.push_back(name);
+    }
+  };
+  if (recursive) {
+    for (const auto& entry :
+         std::filesystem::recursive_directory_iterator(images_dir, error)) {
+      add(entry);
+    }
+  } else {
+    for (const auto& entry :
+         std::filesystem::directory_iterator(images_dir, error)) {
+      add(entry);
     }
   }
   if (error) {

@@ -32,10 +32,12 @@ bool IsImageFile(const std::filesystem::path& path);
 
 // The images a command processes, named relative to images_dir: the
 // non-empty lines of image_list_path if given (as colmap's
-// --image_list_path), else every image file directly in images_dir for
+// --image_list_path), else every image file directly in images_dir (or,
+// `recursive`, below it, named "cam1/0001.png" as COLMAP names them) for
 // which `keep` (if any) is true, sorted. Throws uw::Error when none.
 std::vector<std::string> ListImages(
     const std::filesystem::path& images_dir, const std::string& image_list_path,
-    const std::function<bool(const std::string&)>& keep = nullptr);
+    const std::function<bool(const std::string&)>& keep = nullptr,
+    bool recursive = false);
 
 }  // namespace uw

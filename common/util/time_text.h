@@ -34,4 +34,33 @@ std::string DurationText(double seconds);
 // outside 1900 to 9999.
 std::optional<double> UnixTimeOfDay(int year, int month, int day);
 
+// An ISO 8601 time as Unix time (s): "2024-10-08T17:53:20.25Z",
+// "2024-10-08 19:53:20+02:00", "...-0800", "...+05"; any number of decimals
+// after a '.' or ','. A time must state its zone: a clock in local time is a
+// day's worth of ambiguity, so one without a zone is refused unless
+// `zone_offset_s` (what --time_zone gives) says where the clock was. Throws
+// uw::Error "<where>: ..." on anything else (2024-02-30, 24:00:01, trailing
+// text), saying what was expected.
+double ParseIsoTime(const std::string& text, const std::string& where,
+                    std::optional<int> zone_offset_s = std::nullopt);
+
+// A time field of a log: seconds (Unix or since any start) as a number, or
+// an ISO 8601 time as ParseIsoTime reads it.
+double ParseTimeField(const std::string& text, const std::string& where,
+                      std::optional<int> zone_offset_s = std::nullopt);
+
+// "+02:00", "-08:00", "Z" or "+05:30" (also "+0200", "+02") as seconds east
+// of UTC, as --time_zone and EXIF's OffsetTime give it. Throws uw::Error
+// naming `where`.
+int ParseZoneOffset(const std::string& text, const std::string& where);
+
+// Its inverse: "Z" for 0, else "+02:00", "-05:30".
+std::string ZoneOffsetText(int zone_offset_s);
+
+// A Unix time as ISO 8601 on a clock `zone_offset_s` east of UTC, with
+// `decimals` (0 to 9) digits of the second, rounded:
+//   IsoTimeText(1728410000.25, 7200, 3) == "2024-10-08T19:53:20.250+02:00".
+// Zone 0 is written "Z". Throws uw::Error outside the years 1900 to 9999.
+std::string IsoTimeText(double unix_s, int zone_offset_s, int decimals);
+
 }  // namespace uw
