@@ -259,7 +259,7 @@ std::vector<std::vector<const SurveyMapPoint*>> DiveRuns(
   return runs;
 }
 
-void DrawAxes(const SurveyMap& map, Figure* figure) {
+void DrawAxes(const SurveyMap& map, MapFrame frame, Figure* figure) {
   const cv::Rect& area = map.map_area;
   cv::rectangle(map.image, area.tl() - cv::Point(1, 1), area.br(), kInk,
                 figure->Px(1.5));
@@ -284,8 +284,10 @@ void DrawAxes(const SurveyMap& map, Figure* figure) {
     figure->Text(TickLabel(x, x_step), column,
                  bottom + tick + label_gap + figure->Px(2), 0.7, 0);
   }
-  figure->Text("x east (m)", area.x + area.width / 2,
-               area.y + area.height + figure->Px(72), 0.8, 0);
+  const bool metric = frame == MapFrame::kEastNorthUpMetres;
+  figure->Text(metric ? "x east (m)" : "x (model units)",
+               area.x + area.width / 2, area.y + area.height + figure->Px(72),
+               0.8, 0);
   const double y_step = NiceStep(
       (y1 - y0) / std::max(5.0, area.height / (110.0 * figure->Unit())));
   for (double k = std::ceil(y0 / y_step); k * y_step <= y1; ++k) {
@@ -296,8 +298,8 @@ void DrawAxes(const SurveyMap& map, Figure* figure) {
              figure->Px(1.5));
     figure->Text(TickLabel(y, y_step), area.x - tick - label_gap, row, 0.7, 1);
   }
-  figure->VerticalText("y north (m)", area.x - figure->Px(100),
-                       area.y + area.height / 2, 0.8);
+  figure->VerticalText(metric ? "y north (m)" : "y (model units)",
+                       area.x - figure->Px(100), area.y + area.height / 2, 0.8);
 }
 
 struct NavigationError {
@@ -331,7 +333,7 @@ NavigationError HorizontalNavigationError(const SurveyMapData& data) {
 // Below the map: legend (left), height colour bar (middle), scale bar and
 // north arrow (right).
 void DrawLegend(const SurveyMapData& data, const SurveyMap& map, int top,
-                double z_low, double z_high, Figure* figure) {
+                double z_low, double z_high, MapFrame frame, Figure* figure) {
   const int width = map.image.cols;
   const int row_height = figure->Px(34);
   const int left = map.map_area.x;
@@ -394,8 +396,9 @@ void DrawLegend(const SurveyMapData& data, const SurveyMap& map, int top,
   const int bar_width = static_cast<int>(0.22 * width);
   const int bar_height = figure->Px(20);
   const int bar_top = top + row_height;
-  figure->Text("height z (m, up)", column_b + bar_width / 2,
-               top + row_height / 2, 0.65, 0);
+  const bool metric = frame == MapFrame::kEastNorthUpMetres;
+  figure->Text(metric ? "height z (m, up)" : "height (model units, up)",
+               column_b + bar_width / 2, top + row_height / 2, 0.65, 0);
   for (int i = 0; i < bar_width; ++i) {
     const cv::Vec3d color = HeightRamp((i + 0.5) / bar_width);
     cv::line(map.image, {column_b + i, bar_top},
@@ -415,14 +418,17 @@ void DrawLegend(const SurveyMapData& data, const SurveyMap& map, int top,
                  0.6, 0);
   }
 
-  // North arrow at the right edge (the map is drawn north up), and left of
-  // it a scale bar of a round length near 1/8 of the figure, in halves.
+  // North arrow at the right edge (the map is drawn north up; a model in
+  // its own frame has no north), and left of it a scale bar of a round
+  // length near 1/8 of the figure, in halves.
   const int arrow_x = width - figure->Px(60);
-  const int arrow_bottom = bar_top + figure->Px(44);
-  const int arrow_top = top + figure->Px(26);
-  cv::arrowedLine(map.image, {arrow_x, arrow_bottom}, {arrow_x, arrow_top},
-                  kInk, figure->Px(3), cv::LINE_AA, 0, 0.3);
-  figure->Text("N", arrow_x, top + figure->Px(8), 0.8, 0);
+  if (metric) {
+    const int arrow_bottom = bar_top + figure->Px(44);
+    const int arrow_top = top + figure->Px(26);
+    cv::arrowedLine(map.image, {arrow_x, arrow_bottom}, {arrow_x, arrow_top},
+                    kInk, figure->Px(3), cv::LINE_AA, 0, 0.3);
+    figure->Text("N", arrow_x, top + figure->Px(8), 0.8, 0);
+  }
   const double length_m = NiceLengthBelow(0.125 * width / map.pixels_per_metre);
   const int length_px =
       static_cast<int>(std::lround(length_m * map.pixels_per_metre));
@@ -436,8 +442,8 @@ void DrawLegend(const SurveyMapData& data, const SurveyMap& map, int top,
                 {scale_left + length_px, scale_top + bar_thickness}, kInk,
                 figure->Px(1.5));
   figure->Text("0", scale_left, scale_top + figure->Px(32), 0.6, 0);
-  figure->Text(TickLabel(length_m, length_m) + " m", scale_left + length_px,
-               scale_top + figure->Px(32), 0.6, 0);
+  figure->Text(TickLabel(length_m, length_m) + (metric ? " m" : " units"),
+               scale_left + length_px, scale_top + figure->Px(32), 0.6, 0);
   figure->Text("scale", scale_left + length_px / 2, top + row_height / 2, 0.65,
                0);
 }
@@ -560,9 +566,9 @@ SurveyMap DrawSurveyMap(const SurveyMapData& data,
   if (!options.title.empty()) {
     figure.Text(options.title, options.width_px / 2, top / 2, 0.9, 0);
   }
-  DrawAxes(map, &figure);
+  DrawAxes(map, options.frame, &figure);
   DrawLegend(data, map, map.map_area.y + map_height + axes_height, z_low,
-             z_high, &figure);
+             z_high, options.frame, &figure);
   return map;
 }
 

@@ -3,7 +3,8 @@
 // coloured by dive; a reference vehicle track and the navigation track;
 // axes in metres (x east, y north), a scale bar, a north arrow, a height
 // colour bar and a legend below the map, never over it. All positions in
-// one world frame (ENU), metres.
+// one world frame: east-north-up metres, or (MapFrame::kModelUnits) a
+// model's own frame, turned so that z is up, and labelled as what it is.
 #pragma once
 
 #include <string>
@@ -16,6 +17,16 @@
 
 namespace uw {
 
+enum class MapFrame {
+  // A navigation-fused or uwsim model: "x east (m)", "y north (m)",
+  // "height z (m, up)", a north arrow and a scale in metres.
+  kEastNorthUpMetres,
+  // A model in its own frame and units (stock COLMAP): "x (model units)",
+  // "y (model units)", "height (model units, up)", a scale in model units
+  // and no north arrow. Its z must have been turned up (UpFromCameras).
+  kModelUnits,
+};
+
 struct SurveyMapOptions {
   // Width of the whole figure; the map keeps the world's aspect ratio and
   // the height follows (a map at most 1.5 × width tall).
@@ -23,6 +34,7 @@ struct SurveyMapOptions {
   // Drawn above the map when not empty (ASCII: the figure's font has no
   // other glyphs).
   std::string title;
+  MapFrame frame = MapFrame::kEastNorthUpMetres;
 
   void Check() const;  // width_px in [800, 8000]
 };

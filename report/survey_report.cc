@@ -16,6 +16,7 @@
 #include "colmap_plugins/align/mesh_distance.h"
 #include "colmap_plugins/align/model_comparison.h"
 #include "colmap_plugins/nav/nav_csv.h"
+#include "colmap_plugins/scene/camera_up.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/mesh/mesh.h"
 #include "common/util/csv.h"
@@ -300,42 +301,75 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
   // ------------------------------------------------------------ survey map
   std::string map_html = "<h2 id=\"map\">Survey map</h2>\n";
   if (mesh && !mesh->triangles.empty() && !images.empty()) {
+    // Only the navigation-fused adjustment (--ba_report) puts a model in
+    // the navigation's east-north-up metres. Any other model (stock colmap)
+    // is in its own frame and units, often upside down: it is drawn from
+    // above along the up its cameras give, labelled in model units, and
+    // without the tracks, which lie in another frame.
+    const bool metric = ba.has_value();
+    std::optional<CameraUp> up;
+    Eigen::Matrix3d view_from_model = Eigen::Matrix3d::Identity();
+    if (!metric) {
+      up = UpFromCameras(model);
+      if (up) view_from_model = ViewFromModel(up->up_in_model);
+    }
     SurveyMapData data;
     data.mesh = *mesh;
+    for (Eigen::Vector3d& vertex : data.mesh.vertices) {
+      vertex = view_from_model * vertex;
+    }
     for (const Image* image : images) {
       const auto dive = dive_of_image.find(image->name);
       data.cameras.push_back({image->name,
                               dive == dive_of_image.end() ? 1 : dive->second,
-                              image->ProjectionCenter()});
+                              view_from_model * image->ProjectionCenter()});
     }
     for (const NavRecord& record : navigation) {
+      if (!metric) break;
       data.navigation.push_back(
           {record.image_name, record.dive, record.position});
     }
-    if (truth) {
+    if (truth && metric) {
       for (const NavRecord& record : truth->track) {
         data.true_track.push_back(
             {record.image_name, record.dive, record.position});
       }
     }
+    std::string frame_text =
+        "Model frame: the navigation's (x east, y north, metres), as the "
+        "navigation-fused adjustment (--ba_report) gives it.";
+    if (!metric) {
+      frame_text =
+          "Model frame: the model's own, in its units (not metres, no "
+          "north: no --ba_report says it was fused with the navigation), " +
+          (up ? "seen from above along the up its cameras give (" + up->method +
+                    ")"
+              : std::string("seen along its own z: its cameras give no up")) +
+          "; the navigation and true tracks lie in another frame and are "
+          "not drawn.";
+    }
+    report["map_frame"] = metric ? "east-north-up metres" : "model units";
     data.cameras_label = "model camera centres";
     data.true_track_label = "true vehicle track (truth/nav.csv)";
     data.navigation_label = "navigation (nav.csv)";
     SurveyMapOptions map_options;
     map_options.width_px = options.map_width_px;
-    map_options.title = "Dense mesh from above, navigation and cameras";
+    map_options.frame =
+        metric ? MapFrame::kEastNorthUpMetres : MapFrame::kModelUnits;
+    map_options.title = metric
+                            ? "Dense mesh from above, navigation and cameras"
+                            : "Dense mesh from above and cameras (model units)";
     files.Png("survey_map.png", DrawSurveyMap(data, map_options).image);
     map_html += Figure(
         "survey_map.png", "survey map",
         "The dense mesh seen from above (hillshade, coloured by height), the "
         "model's camera centres coloured by dive" +
-            std::string(navigation.empty()
+            std::string(navigation.empty() || !metric
                             ? ""
                             : ", the navigation track (nav.csv) with its "
                               "errors") +
-            (truth ? " and the true vehicle track" : "") +
-            ". Model frame: for a navigation-fused model that is the "
-            "navigation's frame (x east, y north, metres).");
+            (truth && metric ? " and the true vehicle track" : "") + ". " +
+            frame_text);
   } else {
     map_html += omit(
         "No survey map: it needs the dense mesh (--mesh) and a model with "

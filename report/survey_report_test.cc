@@ -136,6 +136,44 @@ TEST_F(SurveyReportTest, LeavesOutSectionsWithoutInputsAndSaysSo) {
   ExpectImagesInFolder(out, 0);
 }
 
+// Acceptance 5 (issue 17): a model that no --ba_report says was fused with
+// the navigation (stock colmap: its own frame and units) is not labelled
+// in metres, east or north, and the tracks of another frame are not drawn;
+// with the adjuster's report it is the navigation's frame, as before.
+TEST_F(SurveyReportTest, AModelInItsOwnFrameIsNotLabelledMetric) {
+  SurveyReportInputs unfused = inputs_;
+  unfused.ba_report_path.clear();
+  const fs::path out = dir_ / "report";
+  WriteSurveyReport(unfused, SurveyReportOptions(), out);
+  const std::string html = ReadFileToString(out / "index.html");
+  const size_t map = html.find("<h2 id=\"map\">");
+  ASSERT_NE(map, std::string::npos);
+  const std::string map_section =
+      html.substr(map, html.find("<h2", map + 4) - map);
+  EXPECT_NE(map_section.find("in its units (not metres, no north"),
+            std::string::npos)
+      << map_section;
+  EXPECT_NE(map_section.find("seen from above along the up its cameras give"),
+            std::string::npos)
+      << map_section;
+  EXPECT_NE(map_section.find("not drawn"), std::string::npos);
+  EXPECT_EQ(map_section.find("x east"), std::string::npos);
+  EXPECT_EQ(map_section.find("navigation track"), std::string::npos);
+  const nlohmann::json report =
+      nlohmann::json::parse(ReadFileToString(out / "report.json"));
+  EXPECT_EQ(report["map_frame"], "model units");
+
+  const fs::path fused = dir_ / "fused";
+  WriteSurveyReport(inputs_, SurveyReportOptions(), fused);
+  EXPECT_EQ(nlohmann::json::parse(
+                ReadFileToString(fused / "report.json"))["map_frame"],
+            "east-north-up metres");
+  EXPECT_NE(ReadFileToString(fused / "index.html")
+                .find("(x east, y north, "
+                      "metres)"),
+            std::string::npos);
+}
+
 // A log sampled at its own rate names no images: its rows are samples, and
 // the report does not count them as images.
 TEST_F(SurveyReportTest, ALogOfSamplesIsNotCountedAsImages) {

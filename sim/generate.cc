@@ -266,6 +266,13 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
       if (format == "nmea") {
         files.push_back(
             TextFile(out / "nav.nmea", NmeaNavigationLog(logged, local)));
+      } else if (format == "waterlinked") {
+        files.push_back(
+            TextFile(out / "nav_waterlinked.csv",
+                     WaterLinkedNavigationLog(
+                         logged, local,
+                         UgpsTopsideFromText(config.logs.ugps_topside,
+                                             "logs.ugps_topside"))));
       } else {
         files.push_back(
             TextFile(out / ("nav_" + format + ".csv"),

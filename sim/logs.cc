@@ -14,7 +14,8 @@ namespace uw::sim {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / M_PI;
-const std::vector<std::string> kNavFormats = {"wgs84", "utm", "nmea"};
+const std::vector<std::string> kNavFormats = {"wgs84", "utm", "nmea",
+                                              "waterlinked"};
 
 bool Has(const std::vector<std::string>& formats, const std::string& format) {
   return std::find(formats.begin(), formats.end(), format) != formats.end();
@@ -55,7 +56,7 @@ void LogOptions::Check() const {
   for (const std::string& format : nav_formats) {
     if (!Has(kNavFormats, format)) {
       throw ErrorAt("logs.nav_formats: unknown format '", format,
-                    "' (wgs84, utm, nmea)");
+                    "' (wgs84, utm, nmea, waterlinked)");
     }
   }
   if (!nav_formats.empty() && geodetic_origin.empty()) {
@@ -66,6 +67,14 @@ void LogOptions::Check() const {
     throw ErrorAt(
         "logs.nav_formats \"nmea\" needs logs.clock_start: NMEA "
         "holds times of day and dates");
+  }
+  if (Has(nav_formats, "waterlinked")) {
+    if (clock_start.empty()) {
+      throw ErrorAt(
+          "logs.nav_formats \"waterlinked\" needs "
+          "logs.clock_start: its timestamps are Unix times");
+    }
+    UgpsTopsideFromText(ugps_topside, "logs.ugps_topside");
   }
 }
 
@@ -94,7 +103,8 @@ void to_json(nlohmann::json& json, const LogOptions& options) {
           {"exif_times", options.exif_times},
           {"camera_zone", options.camera_zone},
           {"geodetic_origin", options.geodetic_origin},
-          {"nav_formats", options.nav_formats}};
+          {"nav_formats", options.nav_formats},
+          {"ugps_topside", options.ugps_topside}};
 }
 
 void from_json(const nlohmann::json& json, LogOptions& options) {
@@ -104,6 +114,7 @@ void from_json(const nlohmann::json& json, LogOptions& options) {
   fields.Read("camera_zone", &options.camera_zone);
   fields.Read("geodetic_origin", &options.geodetic_origin);
   fields.Read("nav_formats", &options.nav_formats);
+  fields.Read("ugps_topside", &options.ugps_topside);
   fields.RejectUnknown();
   options.Check();
 }
@@ -153,6 +164,23 @@ std::string GeographicNavigationCsv(
       text += fmt::format(",{:.17g}", value);
     }
     text += "\n";
+  }
+  return text;
+}
+
+std::string WaterLinkedNavigationLog(
+    const std::vector<NavigationRecord>& records, const LocalEnu& local,
+    const UgpsTopside& topside) {
+  const LocalEnu at_topside(GeoOrigin{topside.lat_deg, topside.lon_deg, 0.0});
+  const double h = topside.heading_deg / kRadToDeg;
+  std::string text = "position_valid,std,x,y,z,timestamp\n";
+  for (const NavigationRecord& record : records) {
+    const Eigen::Vector3d fix = local.ToGeodetic(record.position);
+    const Eigen::Vector3d enu = at_topside.FromGeodetic(fix(0), fix(1), fix(2));
+    text += fmt::format(
+        "True,{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
+        record.position_sigma(0), enu.x() * std::sin(h) + enu.y() * std::cos(h),
+        enu.x() * std::cos(h) - enu.y() * std::sin(h), -enu.z(), record.time_s);
   }
   return text;
 }

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/nav/geodesy.h"
+#include "colmap_plugins/nav/ugps_csv.h"
 #include "sim/navigation.h"
 
 namespace uw::sim {
@@ -37,7 +38,13 @@ struct LogOptions {
   //   "nmea"   nav.nmea: ZDA dates, HDT headings and GGA fixes (minutes to
   //            1e-8, 0.02 mm; seconds to 1e-6), as a GPS/USBL logger; needs
   //            clock_start
+  //   "waterlinked"  nav_waterlinked.csv: a Water Linked UGPS acoustic log
+  //            (position_valid,std,x,y,z,timestamp; x forward, y starboard
+  //            of the topside at ugps_topside, z depth); needs clock_start
   std::vector<std::string> nav_formats;
+  // "lat,lon,heading" (deg) of the Water Linked topside, which does not
+  // move. Needed by "waterlinked".
+  std::string ugps_topside;
 
   // Throws uw::Error naming the option.
   void Check() const;
@@ -64,6 +71,13 @@ std::string LogTimeUnits(const std::optional<double>& clock_start_s);
 std::string GeographicNavigationCsv(
     const std::vector<NavigationRecord>& records, const LocalEnu& local,
     bool utm);
+
+// The navigation as a Water Linked UGPS acoustic log relative to `topside`
+// (ugps_csv.h): no attitude, names or dives; `std` the horizontal sigma.
+// `records` hold Unix times.
+std::string WaterLinkedNavigationLog(
+    const std::vector<NavigationRecord>& records, const LocalEnu& local,
+    const UgpsTopside& topside);
 
 // The navigation as NMEA 0183 (GPZDA, HEHDT, GPGGA with the altitude above
 // the datum); no roll, pitch, sigmas, dives or image names, as a logger

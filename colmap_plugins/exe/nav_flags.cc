@@ -1,5 +1,7 @@
 #include "colmap_plugins/exe/nav_flags.h"
 
+#include <fmt/format.h>
+
 #include "common/util/time_text.h"
 
 namespace uw {
@@ -46,11 +48,29 @@ void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
   cli->Add<NavLogFormat>(
       "--nav_format", &options->log.format,
       "Format of --nav: csv (nav.csv), nmea (NMEA 0183: GGA fixes, HDT "
-      "headings, RMC/ZDA dates) or auto (nmea when its first line is a "
-      "sentence)",
+      "headings, RMC/ZDA dates), waterlinked (a Water Linked UGPS acoustic "
+      "log: timestamp,x,y,z relative to the topside) or auto (by its first "
+      "line)",
       NavLogFormatFromName, NavLogFormatName);
   cli->Add("--nmea_date", &options->log.nmea.date,
            "UTC date YYYY-MM-DD of an NMEA log without RMC or ZDA sentences");
+  cli->Add<std::optional<UgpsTopside>>(
+      "--ugps_topside", &options->log.ugps.topside,
+      "lat,lon,heading (deg) of the Water Linked topside of a --nav "
+      "waterlinked log, when it did not move",
+      [](const std::string& text) {
+        return std::optional<UgpsTopside>(
+            UgpsTopsideFromText(text, "--ugps_topside"));
+      },
+      [](const std::optional<UgpsTopside>& topside) {
+        return topside ? fmt::format("{},{},{}", topside->lat_deg,
+                                     topside->lon_deg, topside->heading_deg)
+                       : std::string("none");
+      });
+  cli->Add("--ugps_master", &options->log.ugps.master_path,
+           "The topside's own log of a --nav waterlinked log "
+           "(timestamp,lat,lon,orientation: GET /api/v1/position/master), "
+           "interpolated at each row's time");
   AddTimeZoneFlag(cli, &options->log.time_zone_offset_s,
                   "Zone (+hh:mm, -hh:mm or Z) of the clock that wrote ISO "
                   "8601 times without one in --nav and --image_times; "

@@ -306,58 +306,83 @@ TEST(CameraPriorUwsim, AGeographicLogGivesTheLocalLogsPriors) {
   }
 }
 
-// The same as a GPS/USBL logger's NMEA (uwsim's "nmea": GGA fixes with
-// minutes to 1e-8, an HDT heading before each, ZDA dates), south and west
-// of Greenwich, the survey running past midnight UTC so that the date
-// changes within the log. NMEA has no roll, pitch, sigmas or image names,
-// so nav.csv is compared with those dropped too: the priors agree to
-// < 1 mm, and each fix's time is the log's to the microsecond.
-TEST(CameraPriorUwsim, AnNmeaLogGivesTheLocalLogsPriors) {
+// The same as loggers write it without attitude: a GPS/USBL logger's NMEA
+// (uwsim's "nmea": GGA fixes with minutes to 1e-8, an HDT heading before
+// each, ZDA dates) and a Water Linked UGPS acoustic log (x forward, y
+// starboard of a topside 300 m away heading 35 deg, z depth; no attitude at
+// all), south and west of Greenwich, the survey running past midnight UTC
+// so that the date changes within the NMEA log. Neither has roll, pitch,
+// sigmas or image names (UGPS no heading either), so nav.csv is compared
+// with those dropped too: the priors agree to < 1 mm, and each fix's time
+// is the log's to the microsecond.
+TEST(CameraPriorUwsim, NmeaAndWaterLinkedLogsGiveTheLocalLogsPriors) {
   sim::SimConfig config = sim::SmallSimConfig();
   config.survey_options.max_images = 16;
   config.lasers.every_nth_image = 0;
   config.logs.clock_start = "2024-10-08T23:59:50Z";
   config.logs.geodetic_origin = "-12.25,-130.75";
-  config.logs.nav_formats = {"nmea"};
+  config.logs.nav_formats = {"nmea", "waterlinked"};
+  config.logs.ugps_topside = "-12.2475,-130.7510,35";
   const fs::path dir = testing::FreshTestDir("uw_prior_uwsim_nmea");
   sim::Generate(config, dir / "sim");
   const NavToCameraOptions options =
       CameraOnVehicle(dir / "sim", CameraMount::kDown);
   const std::vector<ImageTime> times =
       ReadImageTimesCsv(dir / "sim" / "image_times.csv");
-  std::vector<NavRecord> nav = ReadNavigationCsv(dir / "sim" / "nav.csv");
+  const std::vector<NavRecord> nav = ReadNavigationCsv(dir / "sim" / "nav.csv");
   ASSERT_GT(nav.back().time_s, *UnixTimeOfDay(2024, 10, 9));
-  for (NavRecord& record : nav) {
-    record.image_name.clear();
-    record.has_roll_pitch = false;
-    record.rpy_rad.head<2>().setZero();
-    record.rpy_sigma_rad.setZero();
-    record.position_sigma.setZero();
-  }
-  const std::vector<CameraPrior> local_priors =
-      CameraPriorsFromNavigation(nav, &times, options, nullptr);
 
-  NavLogOptions log;
-  log.origin = config.logs.Origin(config.navigation.site_depth_m);
-  NavLogFrame frame;
-  const std::vector<NavRecord> nmea =
-      ReadNavigationLog(dir / "sim" / "nav.nmea", log, &frame);
-  EXPECT_EQ(frame.position_columns, "NMEA GGA");
-  ASSERT_EQ(nmea.size(), nav.size());
-  double time_error = 0.0;
-  for (size_t i = 0; i < nav.size(); ++i) {
-    time_error = std::max(time_error, std::abs(nmea[i].time_s - nav[i].time_s));
+  for (const std::string format : {"nmea", "waterlinked"}) {
+    const bool nmea = format == "nmea";
+    std::vector<NavRecord> logged = nav;
+    for (NavRecord& record : logged) {
+      record.image_name.clear();
+      record.has_roll_pitch = false;
+      record.rpy_rad.head<2>().setZero();
+      record.rpy_sigma_rad.setZero();
+      // UGPS states one accuracy, which uwsim writes as the horizontal
+      // sigma; NMEA none.
+      record.position_sigma =
+          nmea ? Eigen::Vector3d::Zero()
+               : Eigen::Vector3d::Constant(record.position_sigma.x());
+      if (!nmea) {
+        record.has_yaw = false;
+        record.rpy_rad.setZero();
+      }
+    }
+    const std::vector<CameraPrior> local_priors =
+        CameraPriorsFromNavigation(logged, &times, options, nullptr);
+
+    NavLogOptions log;
+    log.origin = config.logs.Origin(config.navigation.site_depth_m);
+    if (!nmea) {
+      log.ugps.topside =
+          UgpsTopsideFromText(config.logs.ugps_topside, "ugps_topside");
+    }
+    NavLogFrame frame;
+    const fs::path path =
+        dir / "sim" / (nmea ? "nav.nmea" : "nav_waterlinked.csv");
+    const std::vector<NavRecord> read = ReadNavigationLog(path, log, &frame);
+    EXPECT_EQ(frame.position_columns, nmea ? "NMEA GGA" : "Water Linked x,y,z");
+    ASSERT_EQ(read.size(), nav.size());
+    double time_error = 0.0;
+    for (size_t i = 0; i < nav.size(); ++i) {
+      time_error =
+          std::max(time_error, std::abs(read[i].time_s - nav[i].time_s));
+    }
+    EXPECT_LT(time_error, 1e-6);
+    const PriorDifferences difference =
+        Compare(CameraPriorsFromNavigation(read, &times, options, nullptr),
+                local_priors);
+    std::cout << "[ figures ] " << path.filename().string() << ": "
+              << local_priors.size()
+              << " priors, largest differences from nav.csv's: centre "
+              << difference.centre << " m, position covariance "
+              << difference.covariance << " m^2, fix times " << time_error
+              << " s\n";
+    EXPECT_LT(difference.centre, 1e-3);
+    EXPECT_LT(difference.covariance, 1e-9);
   }
-  EXPECT_LT(time_error, 1e-6);
-  const PriorDifferences difference = Compare(
-      CameraPriorsFromNavigation(nmea, &times, options, nullptr), local_priors);
-  std::cout << "[ figures ] nav.nmea: " << local_priors.size()
-            << " priors, largest differences from nav.csv's: centre "
-            << difference.centre << " m, position covariance "
-            << difference.covariance << " m^2, fix times " << time_error
-            << " s\n";
-  EXPECT_LT(difference.centre, 1e-3);
-  EXPECT_LT(difference.covariance, 1e-9);
 }
 
 }  // namespace

@@ -31,27 +31,12 @@ void GeoOrigin::Check() const {
 
 GeoOrigin GeoOriginFromText(const std::string& text,
                             const std::string& source) {
-  std::vector<double> values;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ',')) {
-    // "43.1, 5.4" as typed in quotes: spaces around a number are fine.
-    const size_t first = item.find_first_not_of(" \t");
-    const size_t last = item.find_last_not_of(" \t");
-    const std::optional<double> value =
-        first == std::string::npos ? std::nullopt
-                                   : FiniteDouble(std::string_view(item).substr(
-                                         first, last - first + 1));
-    if (!value) {
-      throw ErrorAt(source, ": '", text,
-                    "' is not lat,lon or lat,lon,height (degrees, metres)");
-    }
-    values.push_back(*value);
-  }
-  if (values.size() != 2 && values.size() != 3) {
+  const std::optional<std::vector<double>> read = FiniteDoubles(text);
+  if (!read || (read->size() != 2 && read->size() != 3)) {
     throw ErrorAt(source, ": '", text,
                   "' is not lat,lon or lat,lon,height (degrees, metres)");
   }
+  const std::vector<double>& values = *read;
   GeoOrigin origin{values[0], values[1], values.size() == 3 ? values[2] : 0.0};
   try {
     origin.Check();

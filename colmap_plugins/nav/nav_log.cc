@@ -12,16 +12,20 @@ std::string NavLogFormatName(NavLogFormat format) {
       return "csv";
     case NavLogFormat::kNmea:
       return "nmea";
+    case NavLogFormat::kWaterLinked:
+      return "waterlinked";
   }
   return "auto";
 }
 
 NavLogFormat NavLogFormatFromName(const std::string& name) {
   for (const NavLogFormat format :
-       {NavLogFormat::kAuto, NavLogFormat::kCsv, NavLogFormat::kNmea}) {
+       {NavLogFormat::kAuto, NavLogFormat::kCsv, NavLogFormat::kNmea,
+        NavLogFormat::kWaterLinked}) {
     if (NavLogFormatName(format) == name) return format;
   }
-  throw ErrorAt("unknown navigation log format '", name, "' (auto, csv, nmea)");
+  throw ErrorAt("unknown navigation log format '", name,
+                "' (auto, csv, nmea, waterlinked)");
 }
 
 void NavLogOptions::Check() const {
@@ -33,12 +37,28 @@ std::vector<NavRecord> ReadNavigationLog(const std::filesystem::path& path,
                                          const NavLogOptions& options,
                                          NavLogFrame* frame) {
   options.Check();
-  const bool nmea =
-      options.format == NavLogFormat::kNmea ||
-      (options.format == NavLogFormat::kAuto && LooksLikeNmea(path));
-  return nmea ? ReadNmeaLog(path, options.nmea, options.origin, frame)
-              : ReadNavigationCsv(path, options.origin, frame,
-                                  options.time_zone_offset_s);
+  NavLogFormat format = options.format;
+  if (format == NavLogFormat::kAuto) {
+    format = LooksLikeNmea(path)      ? NavLogFormat::kNmea
+             : LooksLikeUgpsLog(path) ? NavLogFormat::kWaterLinked
+                                      : NavLogFormat::kCsv;
+  }
+  if (format != NavLogFormat::kWaterLinked &&
+      (options.ugps.topside || !options.ugps.master_path.empty())) {
+    throw ErrorAt(path.string(),
+                  ": --ugps_topside and --ugps_master are for "
+                  "a Water Linked log, and this is ",
+                  NavLogFormatName(format));
+  }
+  switch (format) {
+    case NavLogFormat::kNmea:
+      return ReadNmeaLog(path, options.nmea, options.origin, frame);
+    case NavLogFormat::kWaterLinked:
+      return ReadUgpsLog(path, options.ugps, options.origin, frame);
+    default:
+      return ReadNavigationCsv(path, options.origin, frame,
+                               options.time_zone_offset_s);
+  }
 }
 
 }  // namespace uw
