@@ -14,6 +14,7 @@
 
 #include "colmap_plugins/align/mesh_comparison.h"
 #include "colmap_plugins/align/mesh_distance.h"
+#include "colmap_plugins/align/mesh_frame.h"
 #include "colmap_plugins/align/model_comparison.h"
 #include "colmap_plugins/nav/nav_csv.h"
 #include "colmap_plugins/scene/camera_up.h"
@@ -281,13 +282,25 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
   std::vector<StageTime> timings;
   if (!inputs.timings_path.empty()) timings = ReadTimings(inputs.timings_path);
   std::optional<TriangleMesh> mesh;
-  if (!inputs.mesh_path.empty()) mesh = ReadMesh(inputs.mesh_path);
+  if (!inputs.mesh_path.empty()) {
+    mesh = ReadMesh(inputs.mesh_path);
+    RequireMeshInModelFrame(CheckMeshFrame(model, RayCaster(*mesh)),
+                            inputs.mesh_path.string(),
+                            inputs.model_path.string());
+  }
   std::optional<TruthFigures> truth;
   if (!inputs.truth_dir.empty()) truth = ReadTruth(inputs.truth_dir, model);
   std::optional<CovarianceSummary> covariance;
   if (!inputs.covariance_dir.empty()) {
     covariance = ReadCovarianceSummary(inputs.covariance_dir);
   }
+
+  // Only the navigation-fused adjustment (--ba_report, or a covariance in
+  // the priors' gauge) puts a model in the navigation's east-north-up
+  // metres. Any other model (stock colmap) is in its own frame and units,
+  // often upside down.
+  const bool metric =
+      ba.has_value() || (covariance && covariance->gauge == "priors");
 
   std::unordered_map<std::string, int> dive_of_image;
   for (const NavRecord& record : navigation) {
@@ -301,12 +314,9 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
   // ------------------------------------------------------------ survey map
   std::string map_html = "<h2 id=\"map\">Survey map</h2>\n";
   if (mesh && !mesh->triangles.empty() && !images.empty()) {
-    // Only the navigation-fused adjustment (--ba_report) puts a model in
-    // the navigation's east-north-up metres. Any other model (stock colmap)
-    // is in its own frame and units, often upside down: it is drawn from
-    // above along the up its cameras give, labelled in model units, and
-    // without the tracks, which lie in another frame.
-    const bool metric = ba.has_value();
+    // A model in its own frame is drawn from above along the up its
+    // cameras give, labelled in model units, and without the tracks, which
+    // lie in another frame.
     std::optional<CameraUp> up;
     Eigen::Matrix3d view_from_model = Eigen::Matrix3d::Identity();
     if (!metric) {
@@ -337,11 +347,12 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
     }
     std::string frame_text =
         "Model frame: the navigation's (x east, y north, metres), as the "
-        "navigation-fused adjustment (--ba_report) gives it.";
+        "navigation-fused adjustment gives it.";
     if (!metric) {
       frame_text =
           "Model frame: the model's own, in its units (not metres, no "
-          "north: no --ba_report says it was fused with the navigation), " +
+          "north: neither --ba_report nor a covariance in the priors' "
+          "gauge says it was fused with the navigation), " +
           (up ? "seen from above along the up its cameras give (" + up->method +
                     ")"
               : std::string("seen along its own z: its cameras give no up")) +
@@ -695,16 +706,19 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
                                    HtmlEscape(c.nav_sigma_source) + ")"
                              : std::string()) +
         ".</p>\n";
+    // A model no navigation scaled has sigmas in its own units.
+    const std::string unit = metric ? "m" : "model units";
     std::vector<std::vector<std::string>> rows = {
-        {"camera centre (m)", Fixed(c.centre_sigma_m.median, 4),
+        {"camera centre (" + unit + ")", Fixed(c.centre_sigma_m.median, 4),
          Fixed(c.centre_sigma_m.p95, 4), Fixed(c.centre_sigma_m.max, 4)},
         {"camera rotation (deg)", Fixed(c.rotation_sigma_deg.median, 3),
          Fixed(c.rotation_sigma_deg.p95, 3),
          Fixed(c.rotation_sigma_deg.max, 3)}};
     if (c.point_sigma_m) {
-      rows.push_back(
-          {"point, largest axis (m)", Fixed(c.point_sigma_m->median, 4),
-           Fixed(c.point_sigma_m->p95, 4), Fixed(c.point_sigma_m->max, 4)});
+      rows.push_back({"point, largest axis (" + unit + ")",
+                      Fixed(c.point_sigma_m->median, 4),
+                      Fixed(c.point_sigma_m->p95, 4),
+                      Fixed(c.point_sigma_m->max, 4)});
       uncertainty["point_sigma_m_median"] = c.point_sigma_m->median;
       uncertainty["num_weak_points"] = c.num_weak_points;
     }
@@ -753,7 +767,7 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
     }
     uncertainty_html +=
         "<h3>Least certain images</h3>\n" +
-        HtmlTable({"image", "gauge", "points", "centre 1-sigma (m)",
+        HtmlTable({"image", "gauge", "points", "centre 1-sigma (" + unit + ")",
                    "rotation 1-sigma (deg)"},
                   worst) +
         "<p>Every image: <a href=\"uncertainty/cameras.csv\">"

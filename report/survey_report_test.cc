@@ -143,6 +143,7 @@ TEST_F(SurveyReportTest, LeavesOutSectionsWithoutInputsAndSaysSo) {
 TEST_F(SurveyReportTest, AModelInItsOwnFrameIsNotLabelledMetric) {
   SurveyReportInputs unfused = inputs_;
   unfused.ba_report_path.clear();
+  unfused.covariance_dir.clear();
   const fs::path out = dir_ / "report";
   WriteSurveyReport(unfused, SurveyReportOptions(), out);
   const std::string html = ReadFileToString(out / "index.html");

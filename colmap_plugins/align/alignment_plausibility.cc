@@ -9,9 +9,7 @@
 #include "common/util/median.h"
 
 namespace uw {
-namespace {
 
-// Depths of every observed point in the cameras that see it, model units.
 std::vector<double> ObservationDepths(const Reconstruction& model) {
   std::vector<double> depths;
   for (const Point3D& point : model.Points3D()) {
@@ -23,8 +21,6 @@ std::vector<double> ObservationDepths(const Reconstruction& model) {
   }
   return depths;
 }
-
-}  // namespace
 
 void AlignmentPlausibilityOptions::Check() const {
   if (!(min_range_m > 0.0 && max_range_m > min_range_m &&

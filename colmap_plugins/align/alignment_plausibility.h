@@ -21,6 +21,10 @@
 
 namespace uw {
 
+// Depths of every observed point in the cameras that see it, model units:
+// how far the cameras are from what they map.
+std::vector<double> ObservationDepths(const Reconstruction& model);
+
 struct AlignmentPlausibilityOptions {
   // The median depth of the model's points in the cameras that see them,
   // after the similarity, m. No underwater camera maps what lies closer than

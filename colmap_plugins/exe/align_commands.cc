@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "colmap_plugins/align/mesh_distance.h"
+#include "colmap_plugins/align/mesh_frame.h"
 #include "colmap_plugins/align/sim3.h"
 #include "colmap_plugins/exe/nav_flags.h"
 #include "colmap_plugins/scene/model_io.h"
@@ -167,9 +168,12 @@ void RunModelComparer(const ModelComparerOptions& options) {
              FormatModelComparison(comparison, mesh_path, comparison_options));
   std::optional<MeshComparison> dense;
   if (!options.dense_mesh_path.empty()) {
-    dense = CompareMeshes(TransformMesh(comparison.alignment.b_from_a,
-                                        ReadMesh(options.dense_mesh_path)),
-                          reference_mesh, reference, options.Dense());
+    const TriangleMesh dense_mesh = ReadMesh(options.dense_mesh_path);
+    RequireMeshInModelFrame(CheckMeshFrame(model, RayCaster(dense_mesh)),
+                            options.dense_mesh_path, options.input_path);
+    dense =
+        CompareMeshes(TransformMesh(comparison.alignment.b_from_a, dense_mesh),
+                      reference_mesh, reference, options.Dense());
     fmt::print("{}", FormatMeshComparison(*dense, options.dense_mesh_path));
   }
   if (options.output_path.empty()) return;

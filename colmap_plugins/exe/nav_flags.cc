@@ -67,6 +67,15 @@ void AddNavFlags(CommandLine* cli, PosePriorImportOptions* options,
                                      topside->lon_deg, topside->heading_deg)
                        : std::string("none");
       });
+  cli->Add<NavColumnMap>(
+      "--columns", &options->log.columns,
+      "An export's names for nav.csv's columns, ours=theirs: e.g. "
+      "\"lat=Latitude,lon=Longitude,depth=Depth (m),time=timestamp\"; its "
+      "other columns are ignored",
+      [](const std::string& text) {
+        return NavColumnMapFromText(text, "--columns");
+      },
+      NavColumnMapText);
   cli->Add("--ugps_master", &options->log.ugps.master_path,
            "The topside's own log of a --nav waterlinked log "
            "(timestamp,lat,lon,orientation: GET /api/v1/position/master), "

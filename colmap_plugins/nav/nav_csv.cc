@@ -102,17 +102,67 @@ void CheckColumnSets(const CsvTable& table) {
   }
 }
 
-}  // namespace
-
-std::vector<NavRecord> ReadNavigationCsv(
-    const std::filesystem::path& path, const std::optional<GeoOrigin>& origin,
-    NavLogFrame* frame, std::optional<int> time_zone_offset_s) {
-  const std::vector<std::string> columns = {
+// Every column nav.csv may have.
+const std::vector<std::string>& NavCsvColumns() {
+  static const std::vector<std::string> columns = {
       "image_name", "time",  "dive",     "x",         "y",       "z",
       "lat",        "lon",   "depth",    "alt",       "easting", "northing",
       "zone",       "roll",  "pitch",    "yaw",       "heading", "std_x",
       "std_y",      "std_z", "std_roll", "std_pitch", "std_yaw", "std_heading"};
-  const CsvTable table = CsvTable::Read(path, columns, {"time"});
+  return columns;
+}
+
+}  // namespace
+
+NavColumnMap NavColumnMapFromText(const std::string& text,
+                                  const std::string& source) {
+  NavColumnMap map;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    const std::string pair = text.substr(start, comma - start);
+    const size_t equals = pair.find('=');
+    if (equals == std::string::npos || equals == 0 ||
+        equals + 1 == pair.size()) {
+      throw ErrorAt(source, ": '", pair,
+                    "' is not ours=theirs (e.g. lat=Latitude)");
+    }
+    const std::string ours = pair.substr(0, equals);
+    const std::vector<std::string>& columns = NavCsvColumns();
+    if (std::find(columns.begin(), columns.end(), ours) == columns.end()) {
+      std::string names;
+      for (const std::string& name : columns) {
+        names += (names.empty() ? "" : ", ") + name;
+      }
+      throw ErrorAt(source, ": '", ours, "' is not a nav.csv column (", names,
+                    ")");
+    }
+    for (const auto& [other, file] : map) {
+      if (other == ours) throw ErrorAt(source, ": '", ours, "' given twice");
+    }
+    map.emplace_back(ours, pair.substr(equals + 1));
+    start = comma + 1;
+  }
+  return map;
+}
+
+std::string NavColumnMapText(const NavColumnMap& map) {
+  std::string text;
+  for (const auto& [ours, file] : map) {
+    text += (text.empty() ? "" : ",") + ours + "=" + file;
+  }
+  return text;
+}
+
+std::vector<NavRecord> ReadNavigationCsv(const std::filesystem::path& path,
+                                         const std::optional<GeoOrigin>& origin,
+                                         NavLogFrame* frame,
+                                         std::optional<int> time_zone_offset_s,
+                                         const NavColumnMap& column_map) {
+  const std::vector<std::string>& columns = NavCsvColumns();
+  const CsvTable table =
+      column_map.empty() ? CsvTable::Read(path, columns, {"time"})
+                         : CsvTable::Read(path, columns, {"time"}, column_map);
   NavLogFrame read_frame;
   const PositionColumns position_columns =
       ChoosePositionColumns(table, &read_frame);

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -46,6 +47,17 @@ struct NavLogFrame {
   std::vector<std::string> notes;
 };
 
+// Our names for an export's columns: (ours, the file's) pairs.
+using NavColumnMap = std::vector<std::pair<std::string, std::string>>;
+
+// "lat=Latitude,lon=Longitude,depth=Depth (m),time=timestamp" as --columns
+// takes it: each of our nav.csv columns (ReadNavigationCsv) with the
+// file's name for it. Throws uw::Error naming `source` on a name that is
+// not ours, one given twice, or a pair without '='.
+NavColumnMap NavColumnMapFromText(const std::string& text,
+                                  const std::string& source);
+std::string NavColumnMapText(const NavColumnMap& map);
+
 // Reads nav.csv strictly: the header names the column time, one set of
 // position columns, and optionally image_name, dive, roll and pitch
 // (together), yaw or heading (clockwise from north: yaw = 90 - heading),
@@ -59,6 +71,8 @@ struct NavLogFrame {
 // A geographic log is read into LocalEnu at `origin` (AutomaticOrigin of
 // its first row when not given); its heading or yaw is taken at each fix
 // (LocalEnu::YawFromHeading). `origin` with an x,y,z log is an error.
+// With `column_map`, an export's columns are read under our names and
+// its other columns ignored (NavColumnMapFromText).
 // `time` is seconds or ISO 8601 (ParseTimeField; a time without a zone is
 // on the clock `time_zone_offset_s` east of UTC, an error when not given).
 // Every value is a finite number, dives are integers >= 1, sigmas >= 0,
@@ -69,6 +83,7 @@ std::vector<NavRecord> ReadNavigationCsv(
     const std::filesystem::path& path,
     const std::optional<GeoOrigin>& origin = std::nullopt,
     NavLogFrame* frame = nullptr,
-    std::optional<int> time_zone_offset_s = std::nullopt);
+    std::optional<int> time_zone_offset_s = std::nullopt,
+    const NavColumnMap& column_map = {});
 
 }  // namespace uw

@@ -123,6 +123,53 @@ TEST_F(NavCsvTest, IsoTimesAreReadAsUnixTimes) {
       1728410000.0);
 }
 
+// A vehicle's export, as it comes: its own column names (quoted, with
+// spaces and units), columns we do not read, ISO times. --columns maps
+// ours to theirs and the rest is ignored.
+TEST_F(NavCsvTest, AnExportIsReadThroughAColumnMap) {
+  Read("x,y,z,time\n1,2,3,0\n");  // writes path_; replaced below
+  std::ofstream(path_, std::ios::binary)
+      << "\"Time\",\"Latitude\",\"Longitude\",\"Depth (m)\",\"Heading\","
+         "\"Battery V\"\n"
+         "2024-10-08T17:53:20.25Z,43.1,5.4,10.5,90,15.2\n"
+         "2024-10-08T17:53:21.25Z,43.1001,5.4,10.6,91,15.1\n";
+  const NavColumnMap map = NavColumnMapFromText(
+      "time=Time,lat=Latitude,lon=Longitude,depth=Depth (m),heading=Heading",
+      "--columns");
+  EXPECT_EQ(NavColumnMapText(map),
+            "time=Time,lat=Latitude,lon=Longitude,depth=Depth (m),"
+            "heading=Heading");
+  NavLogFrame frame;
+  const std::vector<NavRecord> nav = ReadNavigationCsv(
+      path_, GeoOrigin{43.1, 5.4, 0.0}, &frame, std::nullopt, map);
+  ASSERT_EQ(nav.size(), 2u);
+  EXPECT_EQ(frame.position_columns, "lat,lon,depth");
+  EXPECT_EQ(nav[1].time_s, 1728410001.25);
+  EXPECT_NEAR(nav[1].position.y(), 11.1, 0.1);  // 1e-4 deg north
+  EXPECT_TRUE(nav[1].position.isApprox(
+      LocalEnu(GeoOrigin{43.1, 5.4, 0.0}).FromGeodetic(43.1001, 5.4, -10.6),
+      1e-12));
+  EXPECT_TRUE(nav[1].has_yaw);
+  // A mapped column the file lacks, and maps that cannot be.
+  ExpectErrorContaining(
+      [&] {
+        ReadNavigationCsv(path_, GeoOrigin{43.1, 5.4, 0.0}, nullptr,
+                          std::nullopt,
+                          NavColumnMapFromText("time=Time,lat=Latitude,lon="
+                                               "Longitude,depth=Depth",
+                                               "--columns"));
+      },
+      ":1: no column 'Depth' (mapped to depth) in the header");
+  ExpectErrorContaining([] { NavColumnMapFromText("lat", "--columns"); },
+                        "--columns: 'lat' is not ours=theirs");
+  ExpectErrorContaining(
+      [] { NavColumnMapFromText("latitude=Lat", "--columns"); },
+      "'latitude' is not a nav.csv column");
+  ExpectErrorContaining(
+      [] { NavColumnMapFromText("lat=A,lat=B", "--columns"); },
+      "'lat' given twice");
+}
+
 // Heading turns clockwise from north; yaw counter-clockwise from east.
 TEST_F(NavCsvTest, HeadingIsReadAsYaw) {
   const std::vector<NavRecord> nav = Read(

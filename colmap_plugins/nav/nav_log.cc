@@ -50,6 +50,10 @@ std::vector<NavRecord> ReadNavigationLog(const std::filesystem::path& path,
                   "a Water Linked log, and this is ",
                   NavLogFormatName(format));
   }
+  if (format != NavLogFormat::kCsv && !options.columns.empty()) {
+    throw ErrorAt(path.string(), ": --columns is for a CSV log, and this is ",
+                  NavLogFormatName(format));
+  }
   switch (format) {
     case NavLogFormat::kNmea:
       return ReadNmeaLog(path, options.nmea, options.origin, frame);
@@ -57,7 +61,7 @@ std::vector<NavRecord> ReadNavigationLog(const std::filesystem::path& path,
       return ReadUgpsLog(path, options.ugps, options.origin, frame);
     default:
       return ReadNavigationCsv(path, options.origin, frame,
-                               options.time_zone_offset_s);
+                               options.time_zone_offset_s, options.columns);
   }
 }
 

@@ -30,6 +30,8 @@ struct NavLogOptions {
   std::optional<GeoOrigin> origin;
   NmeaOptions nmea;
   UgpsOptions ugps;  // only read for a Water Linked log
+  // An export's column names (--columns lat=Latitude,...): only for a CSV.
+  NavColumnMap columns;
   // Seconds east of UTC of the clock that wrote ISO 8601 times without a
   // zone (nav.csv and image_times.csv); none: such times are an error.
   std::optional<int> time_zone_offset_s;

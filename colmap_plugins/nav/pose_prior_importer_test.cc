@@ -668,7 +668,7 @@ TEST(PosePriorImporter, BadInputIsRefusedAndTheDatabaseIsUntouched) {
       {nav + " --mount up", "unknown camera mount 'up'"},
       {nav + " --origin 95,5", "--origin: origin latitude 95 deg lies outside"},
       {nav + " --nav_format xml",
-       "unknown navigation log format 'xml' (auto, csv, nmea)"},
+       "unknown navigation log format 'xml' (auto, csv, nmea, waterlinked)"},
       {nav + " --nmea_date 2024-13-01",
        "--nmea_date 2024-13-01 is not a date YYYY-MM-DD"},
       // An NMEA log is recognised by its first line; this one has no date.

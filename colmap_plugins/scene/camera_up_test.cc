@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
+#include "colmap_plugins/scene/model_testing.h"
 
 namespace uw {
 namespace {
@@ -12,13 +13,7 @@ namespace {
 Reconstruction Cameras(const std::vector<Eigen::Matrix3d>& world_from_cams,
                        const Eigen::Matrix3d& model_from_world) {
   Reconstruction model;
-  Camera camera;
-  camera.camera_id = 1;
-  camera.model_id = CameraModelId::kPinhole;
-  camera.width = 100;
-  camera.height = 100;
-  camera.params = {100, 100, 50, 50};
-  model.AddCamera(camera);
+  model.AddCamera(TestPinholeCamera(1, 100, 100.0));
   image_t id = 0;
   for (const Eigen::Matrix3d& world_from_cam : world_from_cams) {
     Image image;

@@ -18,6 +18,10 @@ struct CsvTable::Format {
   bool input_file = false;
   std::vector<std::string> columns;
   std::vector<std::string> required;
+  // With select: (our name, the file's name) pairs; the file's columns
+  // neither renamed nor in `columns` are dropped.
+  bool select = false;
+  std::vector<std::pair<std::string, std::string>> ours_from_file;
 };
 
 namespace {
@@ -135,6 +139,37 @@ std::string HeaderProblem(const std::vector<std::string>& header,
   return "";
 }
 
+// The header's columns under our names: the renamed ones and those already
+// named as `columns` lists; `kept` gets their indices in the file.
+std::vector<std::string> SelectColumns(
+    const std::vector<std::string>& header,
+    const std::vector<std::string>& columns,
+    const std::vector<std::pair<std::string, std::string>>& ours_from_file,
+    const std::string& where, std::vector<size_t>* kept) {
+  std::vector<std::string> names;
+  for (size_t k = 0; k < header.size(); ++k) {
+    const auto renamed = std::find_if(
+        ours_from_file.begin(), ours_from_file.end(),
+        [&](const auto& pair) { return pair.second == header[k]; });
+    if (renamed != ours_from_file.end()) {
+      names.push_back(renamed->first);
+    } else if (std::find(columns.begin(), columns.end(), header[k]) !=
+               columns.end()) {
+      names.push_back(header[k]);
+    } else {
+      continue;
+    }
+    kept->push_back(k);
+  }
+  for (const auto& [ours, file] : ours_from_file) {
+    if (std::find(header.begin(), header.end(), file) == header.end()) {
+      throw ErrorAt(where, ": no column '", file, "' (mapped to ", ours,
+                    ") in the header '", Join(header), "'");
+    }
+  }
+  return names;
+}
+
 std::string ExpectedHeader(const std::vector<std::string>& columns,
                            const std::vector<std::string>& required) {
   std::string text = "'" + Join(columns) + "'";
@@ -159,7 +194,14 @@ std::string ExpectedHeader(const std::vector<std::string>& columns,
 CsvTable CsvTable::Read(const std::filesystem::path& path,
                         const std::vector<std::string>& columns,
                         const std::vector<std::string>& required) {
-  return Parse(path, Format{true, columns, required});
+  return Parse(path, Format{true, columns, required, false, {}});
+}
+
+CsvTable CsvTable::Read(
+    const std::filesystem::path& path, const std::vector<std::string>& columns,
+    const std::vector<std::string>& required,
+    const std::vector<std::pair<std::string, std::string>>& ours_from_file) {
+  return Parse(path, Format{true, columns, required, true, ours_from_file});
 }
 
 CsvTable CsvTable::Read(const std::filesystem::path& path) {
@@ -172,6 +214,8 @@ CsvTable CsvTable::Parse(const std::filesystem::path& path,
   CsvTable table;
   table.path_ = path;
   bool have_header = false;
+  size_t file_columns = 0;
+  std::vector<size_t> kept;  // with select: the file's columns kept, in order
   size_t at = 0;
   int line = 1;
   while (at < text.size()) {
@@ -187,6 +231,11 @@ CsvTable CsvTable::Parse(const std::filesystem::path& path,
     if (record.fields.size() == 1 && record.fields[0].empty()) continue;
     const std::string where = path.string() + ":" + std::to_string(record_line);
     if (!have_header) {
+      file_columns = record.fields.size();
+      if (format.select) {
+        record.fields = SelectColumns(record.fields, format.columns,
+                                      format.ours_from_file, where, &kept);
+      }
       if (format.input_file) {
         const std::string problem =
             HeaderProblem(record.fields, format.columns, format.required);
@@ -200,9 +249,14 @@ CsvTable CsvTable::Parse(const std::filesystem::path& path,
       have_header = true;
       continue;
     }
-    if (record.fields.size() != table.header_.size()) {
-      throw ErrorAt(where, ": expected ", table.header_.size(), " fields, got ",
+    if (record.fields.size() != file_columns) {
+      throw ErrorAt(where, ": expected ", file_columns, " fields, got ",
                     record.fields.size());
+    }
+    if (format.select) {
+      std::vector<std::string> fields;
+      for (const size_t k : kept) fields.push_back(std::move(record.fields[k]));
+      record.fields = std::move(fields);
     }
     table.rows_.push_back(std::move(record.fields));
     table.lines_.push_back(record_line);

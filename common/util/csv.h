@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace uw {
@@ -30,6 +31,16 @@ class CsvTable {
   static CsvTable Read(const std::filesystem::path& path,
                        const std::vector<std::string>& columns,
                        const std::vector<std::string>& required);
+  // The same for a file whose header names its columns otherwise (an
+  // export): `ours_from_file` renames some of the file's columns ("Latitude"
+  // to "lat"); its other columns keep their names when `columns` lists them
+  // and are ignored otherwise. A renamed column the header lacks is an
+  // error naming it.
+  static CsvTable Read(
+      const std::filesystem::path& path,
+      const std::vector<std::string>& columns,
+      const std::vector<std::string>& required,
+      const std::vector<std::pair<std::string, std::string>>& ours_from_file);
   // A table of any header whose fields are kept exactly as written.
   static CsvTable Read(const std::filesystem::path& path);
 

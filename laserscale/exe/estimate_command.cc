@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "colmap_plugins/align/mesh_frame.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/mesh/mesh.h"
 #include "common/util/error.h"
@@ -70,6 +71,14 @@ void RunEstimate(const EstimateOptions& options) {
   fmt::print("[estimate] reading the mesh {}\n", options.mesh_path.c_str());
   std::fflush(stdout);
   const RayCaster caster(ReadMesh(options.mesh_path));
+  // The laser images were localized in the model: they must look at its
+  // mesh, or every range below would be to another surface.
+  std::vector<Rigid3d> localized;
+  for (const LocalizedImage& pose : poses) {
+    if (pose.success) localized.push_back(pose.cam_from_world);
+  }
+  RequireMeshInModelFrame(CheckMeshFrame(localized, caster, std::nullopt),
+                          options.mesh_path, options.poses_path);
   const std::string method = ScaleMethodName(images.method);
   std::optional<Reconstruction> colmap_model;
   std::optional<ModelDraws> draws;
