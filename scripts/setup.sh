@@ -31,6 +31,8 @@ packages=(
   # EXIF capture times (DateTimeOriginal, SubSec, OffsetTime) and the PNG
   # chunk CRC
   libexif-dev zlib1g-dev
+  # Assimp: meshes in STL, glTF and other tools' formats
+  libassimp-dev
   # mrcal 2.2: the C library uwcalib calibrates with, and its tools
   # (mrcal-calibrate-cameras, run by /usr/bin/python3) and chessboard finder
   # (mrgingham) that tests compare with

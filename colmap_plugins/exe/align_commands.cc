@@ -119,7 +119,8 @@ void AddModelComparerFlags(CommandLine* cli, ModelComparerOptions* options) {
            "Reference surface (PLY triangle mesh in the reference's frame); "
            "default with --truth_dir: truth/mesh.ply");
   cli->Add("--dense_mesh_path", &options->dense_mesh_path,
-           "The model's dense surface (PLY/OBJ in the model's frame, e.g. "
+           "The model's dense surface (PLY, OBJ, STL, glTF, ... in the model's "
+           "frame, e.g. "
            "from dense_mesher): its accuracy and coverage against the "
            "reference surface, after the alignment");
   cli->Add("--dense_min_views", &options->dense.min_views,

@@ -27,7 +27,8 @@ void AddSurveyReportFlags(CommandLine* cli,
            "model_comparer --dense_mesh_path's compare.json: mesh accuracy "
            "and coverage");
   cli->Add("--mesh", &inputs.mesh_path,
-           "Dense mesh (PLY/OBJ) in the model's frame: survey map, mesh "
+           "Dense mesh (PLY, OBJ, STL, glTF, ...) in the model's frame: survey "
+           "map, mesh "
            "figures");
   cli->Add("--timings", &inputs.timings_path,
            "timings.csv (stage,seconds): time per stage");

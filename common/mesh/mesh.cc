@@ -1,5 +1,7 @@
 #include "common/mesh/mesh.h"
 
+#include "common/mesh/assimp_mesh.h"
+
 #include <cctype>
 #include <sstream>
 
@@ -739,7 +741,7 @@ TriangleMesh ReadMesh(const std::filesystem::path& path) {
   for (char& c : extension) c = static_cast<char>(std::tolower(c));
   if (extension == ".ply") return ReadPly(path);
   if (extension == ".obj") return ReadObj(path);
-  throw ErrorAt(path.string(), ": unknown mesh format (expected .ply or .obj)");
+  return ReadAssimpMesh(path);
 }
 
 }  // namespace uw

@@ -45,7 +45,8 @@ TriangleMesh ReadPlyDroppingNonFinite(const std::filesystem::path& path,
 // file and line of anything malformed.
 TriangleMesh ReadObj(const std::filesystem::path& path);
 
-// ReadPly or ReadObj by the file's extension (.ply, .obj; any case).
+// ReadPly or ReadObj by the file's extension (.ply, .obj; any case); any
+// other extension through Assimp (assimp_mesh.h: STL, glTF, ...).
 TriangleMesh ReadMesh(const std::filesystem::path& path);
 
 }  // namespace uw

@@ -19,7 +19,8 @@ void AddEstimateFlags(CommandLine* cli, EstimateOptions* options) {
   ImageScaleEstimationOptions& images = options->images;
   MonteCarloOptions& monte_carlo = images.monte_carlo;
   cli->Add("--mesh", &options->mesh_path,
-           "The model's surface, model units and frame (.ply, .obj)")
+           "The model's surface, model units and frame (.ply, .obj; STL, glTF "
+           "and other formats through Assimp)")
       ->required();
   cli->Add("--poses", &options->poses_path, "poses.json of laserscale localize")
       ->required();
