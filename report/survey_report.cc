@@ -334,15 +334,16 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
                               dive == dive_of_image.end() ? 1 : dive->second,
                               view_from_model * image->ProjectionCenter()});
     }
-    for (const NavRecord& record : navigation) {
-      if (!metric) break;
-      data.navigation.push_back(
-          {record.image_name, record.dive, record.position});
-    }
-    if (truth && metric) {
-      for (const NavRecord& record : truth->track) {
-        data.true_track.push_back(
+    if (metric) {
+      for (const NavRecord& record : navigation) {
+        data.navigation.push_back(
             {record.image_name, record.dive, record.position});
+      }
+      if (truth) {
+        for (const NavRecord& record : truth->track) {
+          data.true_track.push_back(
+              {record.image_name, record.dive, record.position});
+        }
       }
     }
     std::string frame_text =

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <GeographicLib/UTMUPS.hpp>
 
+#include "colmap_plugins/nav/nmea.h"
 #include "common/util/error.h"
 #include "common/util/json_fields.h"
 #include "common/util/time_text.h"
@@ -39,9 +40,7 @@ std::string NmeaAngle(double degrees, bool latitude) {
 }
 
 std::string Sentence(const std::string& body) {
-  unsigned checksum = 0;
-  for (const char c : body) checksum ^= static_cast<unsigned char>(c);
-  return fmt::format("${}*{:02X}\n", body, checksum);
+  return fmt::format("${}*{:02X}\n", body, NmeaChecksum(body));
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "colmap_plugins/scene/model_io.h"
 #include "sim/generate.h"
 #include "tests/support/process.h"
+#include "tests/support/world_plans.h"
 
 namespace uw {
 namespace {
@@ -25,18 +26,9 @@ namespace fs = std::filesystem;
 TEST(UpFromCamerasWorlds, EveryWorldsSurveyGivesItsUp) {
   const fs::path dir = testing::FreshTestDir("uw_camera_up_worlds");
   double worst_deg = 0.0;
-  for (const sim::WorldKind world :
-       {sim::WorldKind::kSeafloor, sim::WorldKind::kVent,
-        sim::WorldKind::kCanyon, sim::WorldKind::kScarp,
-        sim::WorldKind::kBreakwater}) {
+  for (const sim::WorldKind world : testing::AllWorlds()) {
     for (const uint64_t seed : {1u, 2u}) {
-      sim::SimConfig config;
-      config.world = world;
-      config.seed = seed;
-      config.lasers.every_nth_image = 0;
-      const fs::path out =
-          dir / (sim::WorldKindName(world) + std::to_string(seed));
-      sim::Generate(config, out, nullptr, false);
+      const fs::path out = testing::WorldPlan(dir, world, seed);
       Reconstruction model = ReadModel(out / "truth");
       // A stock COLMAP model: the world turned any way.
       const Eigen::Matrix3d model_from_world =

@@ -1,7 +1,6 @@
 #include "colmap_plugins/nav/geodesy.h"
 
 #include <cmath>
-#include <sstream>
 #include <vector>
 
 #include <fmt/format.h>

@@ -44,8 +44,7 @@ std::optional<Sentence> ParseSentence(const std::string& text, int line,
   if (star != std::string::npos) {
     body = text.substr(0, star);
     const std::string given = text.substr(star + 1, 2);
-    unsigned checksum = 0;
-    for (const char c : body) checksum ^= static_cast<unsigned char>(c);
+    const unsigned checksum = NmeaChecksum(body);
     unsigned given_value = 0;
     const auto [end, error] = std::from_chars(
         given.data(), given.data() + given.size(), given_value, 16);
@@ -190,6 +189,12 @@ void NmeaOptions::Check() const {
   if (!date.empty() && !DayOfDate(date)) {
     throw ErrorAt("--nmea_date ", date, " is not a date YYYY-MM-DD");
   }
+}
+
+unsigned NmeaChecksum(std::string_view body) {
+  unsigned checksum = 0;
+  for (const char c : body) checksum ^= static_cast<unsigned char>(c);
+  return checksum;
 }
 
 bool LooksLikeNmea(const std::filesystem::path& path) {

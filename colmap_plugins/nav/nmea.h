@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "colmap_plugins/nav/nav_csv.h"
@@ -19,6 +20,10 @@ struct NmeaOptions {
 
   void Check() const;
 };
+
+// The checksum of a sentence: the XOR of the bytes between its '$' and
+// its '*', written after the '*' as two hex digits.
+unsigned NmeaChecksum(std::string_view body);
 
 // Whether `path` is an NMEA log: its first line that is neither blank nor
 // a '#' comment holds a sentence ("$GPGGA,...", after any prefix a logger
