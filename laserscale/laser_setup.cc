@@ -65,6 +65,9 @@ void LaserSetup::Check() const {
       throw ErrorAt(where, ": colour must be in [0, 1], got ",
                     laser.colour.transpose());
     }
+    if (!(laser.colour.maxCoeff() > 0.0)) {
+      throw ErrorAt(where, ": colour is black (0, 0, 0): no light to detect");
+    }
   }
   for (const int dive : dives) {
     if (dive < 1) throw ErrorAt("laser set-up ", name, ": dive ", dive, " < 1");

@@ -36,7 +36,7 @@ struct LaserSetup {
   // Throws uw::Error naming the set-up, laser and field: names unique and
   // non-empty, origin on Π (|z| <= 1e-9 m), direction unit (to 1e-9) and
   // forward (z > 0), covariances finite, symmetric and positive
-  // semi-definite, colour in [0, 1].
+  // semi-definite, colour in [0, 1] and not black.
   void Check() const;
 };
 

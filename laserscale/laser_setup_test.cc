@@ -97,6 +97,9 @@ TEST(LaserSetup, RejectsBadGeometryNamingTheLaser) {
   LaserSetup colour = TwoLasers();
   colour.lasers[0].colour.x() = 1.5;
   expect_error(colour, "colour");
+  LaserSetup black = TwoLasers();
+  black.lasers[1].colour.setZero();
+  expect_error(black, "laser L1: colour is black");
   LaserSetup empty = TwoLasers();
   empty.lasers.clear();
   expect_error(empty, "no lasers");

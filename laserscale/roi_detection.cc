@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include <fmt/format.h>
 #include <Eigen/Eigenvalues>
 #include <opencv2/imgproc.hpp>
 
@@ -40,6 +41,101 @@ Background MeasureBackground(const cv::Mat& clean, const cv::Mat& valid) {
   }
   background.value = RobustStats(ValueImage(clean - background.levels), valid);
   return background;
+}
+
+SpotRgb SpotColour(const Roi& roi, const RoiRun& run, double noise_sigma,
+                   const SpotDetectorOptions& options) {
+  // The raw spot's shape: the fitted one is that of the low-passed image.
+  const auto precision = [&](const Eigen::Matrix2d& fitted) {
+    const Eigen::Matrix2d raw =
+        fitted - Square(options.lowpass_sigma_px) * Eigen::Matrix2d::Identity();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> shape(raw);
+    return shape.eigenvalues()(0) > 0.1 ? Eigen::Matrix2d(raw.inverse())
+                                        : Eigen::Matrix2d(fitted.inverse());
+  };
+  const Eigen::Matrix2d spot_precision = precision(run.spot.covariance);
+  // The fitted channel's peak, from the censored fit (which a clipped top
+  // does not hide), for the raw shape: the low-pass keeps the volume.
+  const double fitted_peak =
+      run.spot.amplitude * std::sqrt(run.spot.covariance.determinant() *
+                                     spot_precision.determinant());
+  const Eigen::Matrix2d print_precision =
+      run.print ? precision(run.print->covariance) : Eigen::Matrix2d::Zero();
+  const cv::Point peak(
+      std::clamp(static_cast<int>(std::floor(run.spot.mean.x())), 0,
+                 roi.main.cols - 1),
+      std::clamp(static_cast<int>(std::floor(run.spot.mean.y())), 0,
+                 roi.main.rows - 1));
+  SpotRgb colour;
+  for (int c = 0; c < 3; ++c) {
+    // Least squares of the channel's increment on the spot's shape and a
+    // constant, over the window's pixels that clip in neither frame (a
+    // clipped channel's amplitude comes from its tails) and lie off the
+    // aux's print.
+    Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
+    int count = 0;
+    bool clipped = false;
+    double shape_squared = 0.0;  // of every pixel of the window
+    for (int r = 0; r < run.window.rows; ++r) {
+      for (int col = 0; col < run.window.cols; ++col) {
+        if (!run.window.at<uint8_t>(r, col)) continue;
+        const Eigen::Vector2d x(col + 0.5, r + 0.5);
+        const Eigen::Vector2d d = x - run.spot.mean;
+        const double shape = std::exp(-0.5 * d.dot(spot_precision * d));
+        shape_squared += shape * shape;
+        const double main = roi.main.at<cv::Vec3f>(r, col)[c];
+        const double aux =
+            roi.aux.empty() ? 0.0 : roi.aux.at<cv::Vec3f>(r, col)[c];
+        if (main >= options.saturation_level ||
+            (!roi.aux.empty() && roi.clipped_aux[c].at<uint8_t>(r, col))) {
+          clipped = true;
+          continue;
+        }
+        if (run.print) {
+          const Eigen::Vector2d e = x - run.print->mean;
+          if (e.dot(print_precision * e) < 9.0) continue;
+        }
+        // With an aux the difference has no background to fit.
+        const Eigen::Vector2d row(roi.aux.empty() ? 1.0 : 0.0, shape);
+        normal += row * row.transpose();
+        rhs += row * (main - aux);
+        ++count;
+      }
+    }
+    // Too few pixels, or too little of the spot's shape among them, for
+    // a fit: the amplitude is the clip's bound if the channel clips there,
+    // else nothing was seen.
+    if (!roi.aux.empty()) normal(0, 0) = 1.0;
+    const bool solvable =
+        count >= 5 && normal.determinant() > 1e-6 * Square(normal.trace());
+    const Eigen::Matrix2d inverse =
+        solvable ? Eigen::Matrix2d(normal.inverse()) : Eigen::Matrix2d::Zero();
+    const Eigen::Vector2d fit = inverse * rhs;
+    // In linear light at the peak, over what lies under it: the aux there,
+    // or the fitted constant (the ROI's level) without one.
+    const double base = !roi.aux.empty() ? roi.aux.at<cv::Vec3f>(peak)[c]
+                        : solvable       ? fit(0)
+                                         : roi.background.levels[c];
+    double amplitude = fit(1);
+    double amplitude_sigma = noise_sigma * std::sqrt(inverse(1, 1));
+    if (c == run.channel && (clipped || !solvable)) {
+      // Its top clipped: the censored fit's peak.
+      amplitude = fitted_peak;
+      amplitude_sigma = noise_sigma / std::sqrt(shape_squared);
+    } else if (!solvable) {
+      amplitude = clipped ? options.saturation_level - base : 0.0;
+      amplitude_sigma = 0.0;
+    }
+    const int rgb = 2 - c;
+    colour.rgb(rgb) = LinearLevel(base + amplitude, options.srgb_levels) -
+                      LinearLevel(base, options.srgb_levels);
+    colour.sigma(rgb) =
+        amplitude_sigma *
+        (LinearLevel(base + amplitude + 0.5, options.srgb_levels) -
+         LinearLevel(base + amplitude - 0.5, options.srgb_levels));
+  }
+  return colour;
 }
 
 std::optional<RoiRun> DetectInRoi(const Roi& roi, const cv::Mat& main, int sign,
@@ -205,8 +301,32 @@ std::optional<RoiRun> PrepareRoi(const cv::Mat& image, const cv::Mat& aux,
       roi->print_window = print->window;
     }
   }
-  const std::optional<RoiRun> nominal =
+  std::optional<RoiRun> nominal =
       DetectInRoi(*roi, roi->main, 1, roi->background, 0.0, -1, options);
+  if (nominal && options.max_colour_angle_deg < 180.0) {
+    // The image's noise (options' or the robust σ of the ROI's second
+    // differences), and the aux's in the difference.
+    double noise_sigma = options.noise_sigma;
+    if (noise_sigma < 0.0) {
+      std::vector<float> values;
+      AppendSecondDifferences(roi->main, &values);
+      noise_sigma = SecondDifferenceSigma(&values);
+    }
+    if (!roi->aux.empty() && options.aux_equally_noisy) {
+      noise_sigma *= std::hypot(1.0, roi->aux_noise_gain);
+    }
+    const SpotRgb colour = SpotColour(*roi, *nominal, noise_sigma, options);
+    double angle_deg = 0.0;
+    if (!IsLaserColour(colour, roi->colour.rgb, options, &angle_deg)) {
+      roi->colour_note = fmt::format(
+          "a bright spot on the beam at ({:.1f}, {:.1f}) is not the laser's "
+          "colour: {:.0f} deg from it (linear RGB {:.3g}, {:.3g}, {:.3g})",
+          nominal->spot.mean.x() + roi->rect.x,
+          nominal->spot.mean.y() + roi->rect.y, angle_deg, colour.rgb(0),
+          colour.rgb(1), colour.rgb(2));
+      return std::nullopt;
+    }
+  }
   if (nominal) {
     roi->channel = nominal->channel;
     roi->nominal_spot = nominal->spot;

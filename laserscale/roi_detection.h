@@ -53,8 +53,18 @@ std::optional<RoiRun> DetectInRoi(const Roi& roi, const cv::Mat& main, int sign,
                                   double extra_sigma, int channel,
                                   const SpotDetectorOptions& options);
 
+// The colour of a run's spot (the nominal one: the Monte Carlo
+// iterations keep its verdict): per channel, the amplitude of its fitted
+// shape over a constant, by least squares over the window's pixels that
+// clip in neither frame and lie off the aux's print, in linear light over
+// the aux's level at its peak (the fitted constant without an aux); its σ
+// from the pixels' noise_sigma (levels, of the increment).
+SpotRgb SpotColour(const Roi& roi, const RoiRun& run, double noise_sigma,
+                   const SpotDetectorOptions& options);
+
 // LSD steps 2-4, the nominal backgrounds of the thresholds, the aux's
-// print and the nominal detection.
+// print and the nominal detection, refused (none, with the roi's
+// colour_note) when its colour is not the laser's (IsLaserColour).
 // Fills `roi` (from PredictRois) for the Monte Carlo iterations; `aux`
 // may be empty.
 std::optional<RoiRun> PrepareRoi(const cv::Mat& image, const cv::Mat& aux,

@@ -22,6 +22,7 @@ double HueDistanceDeg(double a, double b) {
 LaserColour ColourOf(const Laser& laser) {
   const Eigen::Vector3d& rgb = laser.colour;
   LaserColour colour;
+  colour.rgb = rgb.normalized();
   colour.hue_deg = HueDeg(rgb(0), rgb(1), rgb(2));
   colour.chromatic = rgb.maxCoeff() > 0.0 &&
                      (rgb.maxCoeff() - rgb.minCoeff()) / rgb.maxCoeff() >= 0.1;
@@ -32,6 +33,35 @@ LaserColour ColourOf(const Laser& laser) {
   colour.dominant = 2 - max_rgb;
   colour.weakest = 2 - min_rgb;
   return colour;
+}
+
+double LinearLevel(double level, bool srgb) {
+  const double v = level / 255.0;
+  if (!srgb) return v;
+  // The sRGB curve, continued as an odd function below 0 (a low-passed
+  // noisy level can dip under it).
+  const double a = std::abs(v);
+  const double linear =
+      a <= 0.04045 ? a / 12.92 : std::pow((a + 0.055) / 1.055, 2.4);
+  return v < 0.0 ? -linear : linear;
+}
+
+bool IsLaserColour(const SpotRgb& colour, const Eigen::Vector3d& expected,
+                   const SpotDetectorOptions& options, double* angle_deg) {
+  const Eigen::Vector3d& rgb = colour.rgb;
+  const double along = rgb.dot(expected);
+  const double across = (rgb - along * expected).norm();
+  *angle_deg = std::atan2(across, along) * 180.0 / M_PI;
+  if (options.max_colour_angle_deg >= 180.0) return true;
+  if (!(along > 0.0)) return false;
+  // The noise of the part across `expected`, in its direction.
+  const Eigen::Vector3d direction =
+      across > 0.0 ? Eigen::Vector3d((rgb - along * expected) / across)
+                   : Eigen::Vector3d::Zero();
+  const double noise = direction.cwiseProduct(colour.sigma).norm();
+  return across <=
+         std::tan(options.max_colour_angle_deg * M_PI / 180.0) * along +
+             options.colour_noise_sigmas * noise;
 }
 
 }  // namespace uw::lsd

@@ -1,5 +1,7 @@
 #include "laserscale/spot_colour.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 namespace uw {
@@ -32,6 +34,43 @@ TEST(ColourOf, NamesTheBgrChannels) {
   Laser white;
   white.colour = {1.0, 0.95, 1.0};
   EXPECT_FALSE(lsd::ColourOf(white).chromatic);
+}
+
+TEST(LinearLevel, InvertsTheSrgbCurve) {
+  EXPECT_EQ(lsd::LinearLevel(0.0, true), 0.0);
+  EXPECT_NEAR(lsd::LinearLevel(255.0, true), 1.0, 1e-12);
+  EXPECT_NEAR(lsd::LinearLevel(128.0, true), 0.2158605, 1e-6);
+  EXPECT_NEAR(lsd::LinearLevel(-128.0, true), -0.2158605, 1e-6);
+  EXPECT_EQ(lsd::LinearLevel(51.0, false), 0.2);
+}
+
+// A red spot is red; the lamp's light after the water, blue-green, is not,
+// however bright; a spot darker than its background is no laser; a faint
+// one whose noise could turn its colour is not refused for its colour.
+TEST(IsLaserColour, TellsTheLaserFromTheLamp) {
+  const SpotDetectorOptions options;
+  const Eigen::Vector3d red(1.0, 0.0, 0.0);
+  const Eigen::Vector3d noise = Eigen::Vector3d::Constant(0.001);
+  double angle = 0.0;
+  EXPECT_TRUE(
+      lsd::IsLaserColour({{0.2, 0.01, 0.0}, noise}, red, options, &angle));
+  EXPECT_NEAR(angle, std::atan(0.05) * 180.0 / M_PI, 1e-9);
+  EXPECT_FALSE(
+      lsd::IsLaserColour({{0.02, 0.3, 0.35}, noise}, red, options, &angle));
+  EXPECT_GT(angle, 80.0);
+  EXPECT_FALSE(
+      lsd::IsLaserColour({{-0.2, 0.0, 0.0}, noise}, red, options, &angle));
+  // 60 deg off: refused when measured well, kept within its noise (the
+  // part across, 0.087, within tan(max) 0.05 + 3 x 0.02).
+  const Eigen::Vector3d off(std::cos(M_PI / 3), std::sin(M_PI / 3), 0.0);
+  EXPECT_FALSE(lsd::IsLaserColour({0.1 * off, noise}, red, options, &angle));
+  EXPECT_TRUE(lsd::IsLaserColour({0.1 * off, Eigen::Vector3d::Constant(0.02)},
+                                 red, options, &angle));
+  EXPECT_NEAR(angle, 60.0, 1e-9);
+  SpotDetectorOptions off_test = options;
+  off_test.max_colour_angle_deg = 180.0;
+  EXPECT_TRUE(
+      lsd::IsLaserColour({{0.02, 0.3, 0.35}, noise}, red, off_test, &angle));
 }
 
 }  // namespace

@@ -158,6 +158,8 @@ std::vector<DetectedSpot> DetectSpots(const cv::Mat& image, const cv::Mat& aux,
         spot.detected && spot.detection_rate >= options.min_detection_rate;
     if (!spot.detected) {
       spot.problem = "not detected";
+      if (!roi.colour_note.empty())
+        spot.problem += " (" + roi.colour_note + ")";
     } else if (!spot.stable) {
       spot.problem = "unstable: detected in " + Percent(spot.detection_rate) +
                      " of iterations";

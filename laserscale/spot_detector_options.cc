@@ -44,6 +44,14 @@ void SpotDetectorOptions::Check() const {
   if (max_area_px < min_area_px) {
     fail("max_area_px", max_area_px, "must be >= min_area_px");
   }
+  if (!((max_colour_angle_deg > 0.0 && max_colour_angle_deg < 90.0) ||
+        max_colour_angle_deg == 180.0)) {
+    fail("max_colour_angle_deg", max_colour_angle_deg,
+         "must be in (0, 90), or 180 (no colour test)");
+  }
+  if (!(colour_noise_sigmas >= 0.0 && std::isfinite(colour_noise_sigmas))) {
+    fail("colour_noise_sigmas", colour_noise_sigmas, "must be >= 0");
+  }
   if (fit_margin_px < 0 || fit_margin_px > 20) {
     fail("fit_margin_px", fit_margin_px, "must be in [0, 20]");
   }

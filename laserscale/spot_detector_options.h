@@ -43,9 +43,9 @@ struct SpotDetectorOptions {
   // and the Monte Carlo noise in quadrature; and >= min_value levels). The
   // hue test (within hue_tolerance_deg of the laser colour's hue, red
   // wrapping at 0/360, for saturation >= min_saturation) is off by default:
-  // in uwsim's water a red laser's green and blue leak outlive its red, so
-  // its spots turn from red at 1.5 m to green at 4 m (docs). On real red
-  // lasers, whose light stays red, 30-40 deg and 0.3 reject other colours.
+  // a pixel's hue in encoded levels follows the background under it; the
+  // colour test after the fit (below) judges the spot's colour as a whole.
+  // On red lasers 30-40 deg and 0.3 reject pixels of other colours.
   double hue_tolerance_deg = 180.0;
   double min_saturation = 0.0;
   double value_threshold_sigmas = 4.0;
@@ -66,6 +66,20 @@ struct SpotDetectorOptions {
   // tells how high the spot is.
   int fit_margin_px = 3;
   double saturation_level = 250.0;
+
+  // 11b. The colour test (docs/laserscale_detector.md): the fitted spot's
+  // amplitude per channel in linear light (levels decoded with the sRGB
+  // curve when srgb_levels, as cameras encode their files) must lie within
+  // max_colour_angle_deg of the laser's colour (lasers.json; a laser's one
+  // wavelength keeps its colour at any range), allowing
+  // colour_noise_sigmas σ of its noise; else the spot is not detected. A
+  // white shell, a highlight or a texture residue has the colour of the
+  // lamp's light after the water: 50-85 deg from a red laser on uwsim,
+  // true spots 0-20 deg, and up to ~60 deg for faint spots in JPEG, whose
+  // chroma subsampling averages their colour away. 180 switches it off.
+  double max_colour_angle_deg = 45.0;
+  double colour_noise_sigmas = 2.0;
+  bool srgb_levels = true;
 
   // 12. Centre covariance from the spot's shape, thesis reading: the centre
   // lies within the top `top_fraction` of the spot's luminance with

@@ -57,6 +57,9 @@ struct Roi {
   std::array<cv::Mat, 3> clipped_main;
   std::array<cv::Mat, 3> clipped_aux;
   std::string texture_note;  // why the texture was not removed
+  // Why the nominal detection found nothing though something bright lay on
+  // the beam: it was not of the laser's colour.
+  std::string colour_note;
   // With texture_note: the aux shows another scene, not just a noisy one
   // (its texture would have matched; AlignAux).
   bool aux_mismatch = false;

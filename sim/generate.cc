@@ -1,5 +1,6 @@
 #include "sim/generate.h"
 
+#include <algorithm>
 #include <memory>
 
 #include <fmt/format.h>
@@ -13,6 +14,7 @@
 #include "common/util/file.h"
 #include "common/util/json_fields.h"
 #include "laserscale/laser_setup.h"
+#include "sim/distractors.h"
 #include "sim/laser_images.h"
 #include "sim/logs.h"
 #include "sim/rig.h"
@@ -104,8 +106,15 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
     throw ErrorAt(out.string(),
                   ": output folder exists and is not empty; choose a new one");
   }
-  const World world =
-      MakeWorld(config.world, config.world_options, config.seed);
+  World world = MakeWorld(config.world, config.world_options, config.seed);
+  size_t num_distractors = 0;
+  if (config.distractors.Any()) {
+    std::vector<Distractor> distractors =
+        ScatterDistractors(world.mesh, config.distractors, config.seed);
+    num_distractors = distractors.size();
+    world.texture = std::make_shared<DistractorTexture>(
+        std::move(world.texture), std::move(distractors));
+  }
   std::vector<SurveyStation> stations = PlanSurvey(
       config.survey, world, config.camera, config.survey_options, config.seed);
   if (stations.empty()) throw ErrorAt("the survey has no images");
@@ -197,7 +206,12 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
 
   const LaserSetup true_lasers = TrueLaserSetup(config.lasers);
   FrameOptions lasers_on;
-  lasers_on.lasers = true_lasers.lasers;
+  for (const Laser& laser : true_lasers.lasers) {
+    const std::vector<std::string>& off = config.lasers.switched_off;
+    if (std::find(off.begin(), off.end(), laser.name) == off.end()) {
+      lasers_on.lasers.push_back(laser);
+    }
+  }
   lasers_on.optics = config.lasers.optics;
   FrameOptions aux_frame;
   aux_frame.gain_factor = config.lasers.aux_gain;
@@ -231,6 +245,7 @@ GenerateSummary Generate(const SimConfig& config, const fs::path& out,
       {"dive_biases_m", ToJson(summary.dive_biases)},
       {"num_images", all_images.size()},
       {"num_laser_images", shots.size()},
+      {"num_distractors", num_distractors},
       {"num_triangles", summary.num_triangles}};
   WriteModel(TrueModel(cameras, images), out / "truth", ModelFormat::kText);
   WritePly(world.mesh, out / "truth" / "mesh.ply",

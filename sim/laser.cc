@@ -1,5 +1,7 @@
 #include "sim/laser.h"
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "common/util/error.h"
@@ -80,6 +82,18 @@ void LaserOptions::Check() const {
     throw ErrorAt("lasers.auxiliary = \"", auxiliary,
                   "\": expected \"absent\" or \"shifted\"");
   }
+  const LaserSetup lasers = TrueLaserSetup(*this);
+  for (const std::string& name : switched_off) {
+    if (std::none_of(lasers.lasers.begin(), lasers.lasers.end(),
+                     [&](const Laser& laser) { return laser.name == name; })) {
+      std::string names;
+      for (const Laser& laser : lasers.lasers) {
+        names += (names.empty() ? "" : ", ") + laser.name;
+      }
+      throw ErrorAt("lasers.switched_off: no laser \"", name, "\" in set-up ",
+                    setup, " (its lasers: ", names, ")");
+    }
+  }
   const auto check_range = [](const char* name, double value, double max) {
     if (!(value >= 0.0 && value <= max)) {
       throw ErrorAt("lasers.", name, " = ", value, ": must be in [0, ", max,
@@ -112,6 +126,7 @@ void to_json(nlohmann::json& json, const LaserOptions& options) {
           {"every_nth_image", options.every_nth_image},
           {"placement", options.placement},
           {"auxiliary", options.auxiliary},
+          {"switched_off", options.switched_off},
           {"aux_translation_m", options.aux_translation_m},
           {"aux_rotation_deg", options.aux_rotation_deg},
           {"aux_gain", options.aux_gain},
@@ -144,6 +159,7 @@ void from_json(const nlohmann::json& json, LaserOptions& options) {
   fields.Read("every_nth_image", &options.every_nth_image);
   fields.Read("placement", &options.placement);
   fields.Read("auxiliary", &options.auxiliary);
+  fields.Read("switched_off", &options.switched_off);
   fields.Read("aux_translation_m", &options.aux_translation_m);
   fields.Read("aux_rotation_deg", &options.aux_rotation_deg);
   fields.Read("aux_gain", &options.aux_gain);
@@ -217,6 +233,7 @@ LaserSetup CalibratedLaserSetup(const LaserSetup& truth,
 LaserBeam::LaserBeam(const Laser& laser, const BeamOptics& beam_optics,
                      const Rigid3d& cam_from_world)
     : colour(laser.colour), optics(beam_optics) {
+  colour.maxCoeff(&dominant_channel);
   const Rigid3d world_from_cam = cam_from_world.Inverse();
   origin_in_world = world_from_cam * laser.origin_in_cam;
   direction_in_world =

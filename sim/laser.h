@@ -15,8 +15,13 @@
 // plane across it is E(t) exp(-2 r^2 / w(t)^2) at r metres off its axis,
 // E(t) = peak_level (w(1) / w(t))^2 (the power of the beam is conserved), in
 // the units of the renderer's lamp: a white surface across the beam at 1 m
-// in clear water reads peak_level on the linear sensor range at gain 1. The
-// water attenuates it like any light. Its footprint on a surface is that
+// in clear water reads peak_level on the linear sensor range at gain 1. Its
+// light is one wavelength, that of its colour's strongest channel: the
+// water attenuates it by that channel's coefficient on its way to the
+// surface and back to the camera, in every channel alike (the small green
+// and blue responses of a red laser fade with its red), so a spot keeps
+// its colour at any range while the lamp-lit scene turns blue-green. Its
+// footprint on a surface is that
 // irradiance times the cosine of incidence, so a spot is elongated on an
 // oblique surface, follows the relief, and is seen only where the camera
 // sees the surface.
@@ -53,8 +58,8 @@ struct LaserOptions {
   // "A", "B", "C" (above) or "custom" (custom_lasers).
   std::string setup = "C";
   std::vector<Laser> custom_lasers;
-  // Colour of the preset set-ups' lasers (linear RGB): a red laser leaks a
-  // little into the green and blue of a Bayer sensor.
+  // Colour of the preset set-ups' lasers (linear RGB): a red laser is seen
+  // a little in the green and blue of a Bayer sensor.
   Eigen::Vector3d colour{1.0, 0.15, 0.1};
   BeamOptics optics;
   // A laser image after every n-th survey image (0: none), placed
@@ -70,6 +75,11 @@ struct LaserOptions {
   // or "shifted" (on: the spots stay near the same pixels while the texture
   // moves under them).
   std::string auxiliary = "shifted";
+  // Names of lasers switched off in the laser images and their auxes (a
+  // laser that failed during the dive): lasers.json still lists them, and
+  // truth/laser_images.json marks their spots "on": false. Any other
+  // bright thing the detector reports for them is a false spot.
+  std::vector<std::string> switched_off;
   double aux_translation_m = 0.05;
   double aux_rotation_deg = 0.5;
   double aux_gain = 1.15;
@@ -97,6 +107,9 @@ struct LaserBeam {
   Eigen::Vector3d origin_in_world = Eigen::Vector3d::Zero();
   Eigen::Vector3d direction_in_world = Eigen::Vector3d::UnitZ();  // unit
   Eigen::Vector3d colour = Eigen::Vector3d::Ones();
+  // The channel of the laser's wavelength (its colour's strongest, RGB
+  // order): the water attenuates its light by that channel's coefficient.
+  int dominant_channel = 0;
   BeamOptics optics;
 
   LaserBeam() = default;

@@ -1,5 +1,7 @@
 #include "sim/laser_images.h"
 
+#include <algorithm>
+
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -47,14 +49,20 @@ std::string LaserName(const std::string& name) {
   return name.substr(0, at) + "L" + name.substr(at);
 }
 
-nlohmann::json SpotsJson(const LaserSetup& setup, const RayCaster& caster,
-                         const Camera& camera, const Rigid3d& cam_from_world) {
+nlohmann::json SpotsJson(const LaserSetup& setup,
+                         const std::vector<std::string>& switched_off,
+                         const RayCaster& caster, const Camera& camera,
+                         const Rigid3d& cam_from_world) {
   nlohmann::json spots = nlohmann::json::array();
   for (const Laser& laser : setup.lasers) {
     const LaserSpotTruth truth =
         TrueLaserSpot(caster, camera, cam_from_world, laser);
-    nlohmann::json spot = {
-        {"laser", laser.name}, {"hit", truth.hit}, {"visible", truth.visible}};
+    const bool on = std::find(switched_off.begin(), switched_off.end(),
+                              laser.name) == switched_off.end();
+    nlohmann::json spot = {{"laser", laser.name},
+                           {"on", on},
+                           {"hit", truth.hit},
+                           {"visible", truth.visible}};
     if (truth.hit) {
       spot["range_m"] = truth.range_m;
       spot["point_in_world"] = ToJson(truth.point_in_world);
@@ -128,15 +136,16 @@ nlohmann::json LaserShotTruth(const LaserShot& shot, const LaserSetup& setup,
       {"time", shot.time_s},
       {"dive", shot.dive},
       {"cam_from_world", PoseJson(shot.cam_from_world)},
-      {"spots", SpotsJson(setup, caster, camera, shot.cam_from_world)},
+      {"spots", SpotsJson(setup, options.switched_off, caster, camera,
+                          shot.cam_from_world)},
       {"aux",
        {{"name", shot.aux_name},
         {"cam_from_world", PoseJson(shot.aux_cam_from_world)},
         {"gain_factor", options.aux_gain},
         {"lasers_on", aux_lasers}}}};
   if (aux_lasers) {
-    json["aux"]["spots"] =
-        SpotsJson(setup, caster, camera, shot.aux_cam_from_world);
+    json["aux"]["spots"] = SpotsJson(setup, options.switched_off, caster,
+                                     camera, shot.aux_cam_from_world);
   }
   return json;
 }

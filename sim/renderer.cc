@@ -117,6 +117,7 @@ class FrameShader {
               const Eigen::Vector3d& camera_in_world,
               const Rigid3d& cam_from_world, const FrameOptions& frame_options)
       : texture_(texture),
+        shiny_(texture.HasShine()),
         attenuation_(options.water.attenuation_per_m),
         veil_(options.water.backscatter_strength *
               options.water.backscatter_rgb),
@@ -143,20 +144,31 @@ class FrameShader {
   }
 
   const Eigen::Vector3d& Veil() const { return veil_; }
+  bool HasShine() const { return shiny_; }
+  Shine ShineAt(const Eigen::Vector3d& point) const {
+    return texture_.ShineAt(point);
+  }
 
   Eigen::Vector3d Transmission(double distance) const {
     return Exp(-attenuation_ * distance);
   }
 
-  // Calls add(irradiance, shadow_ray, shadow_length) for each emitter that
-  // lights `point` unless something lies along the shadow ray. With a
-  // surface normal (unit, on the side the camera sees) the irradiance is on
-  // that surface; without, on a particle facing the emitter. The water's
-  // attenuation between emitter and point is included.
+  // Calls add(light, channel, shadow_ray, shadow_length) for each emitter
+  // that lights `point` unless something lies along the shadow ray: the
+  // light that a unit albedo at the point sends to the camera,
+  // camera_distance_m away, through the water: the irradiance (on the
+  // surface with its unit normal on the camera's side; without, on a
+  // particle facing the emitter) with the water's attenuation on both legs.
+  // The lamp's broadband light is reflected by the albedo of each channel
+  // and attenuated by each channel's coefficient (channel -1). A laser's
+  // light is one wavelength, that of its colour's strongest channel
+  // (`channel`): the surface reflects it by that channel's albedo and the
+  // water attenuates it by that channel's coefficient, and the sensor sees
+  // it in every channel in the proportions of the laser's colour.
   template <typename Add>
   void ForEachIncidence(const Eigen::Vector3d& point,
                         const Eigen::Vector3d* surface_normal,
-                        Add&& add) const {
+                        double camera_distance_m, Add&& add) const {
     for (const SpotLight& spot : spots_) {
       const Eigen::Vector3d to_light = spot.position_in_world - point;
       const double distance = to_light.norm();
@@ -176,8 +188,8 @@ class FrameShader {
               ? point
               : Eigen::Vector3d(point + offset * *surface_normal);
       add((spot.intensity * cone * cos_incidence / (distance * distance)) *
-              Transmission(distance),
-          shadow_ray, distance - offset);
+              Transmission(distance + camera_distance_m),
+          -1, shadow_ray, distance - offset);
     }
     for (const LaserBeam& beam : beams_) {
       double along = 0.0;
@@ -197,32 +209,34 @@ class FrameShader {
           surface_normal == nullptr
               ? point
               : Eigen::Vector3d(point + offset * *surface_normal);
-      add((irradiance * cos_incidence) *
-              beam.colour.cwiseProduct(Transmission(along)),
-          shadow_ray, std::max(0.0, along - offset));
+      const int channel = beam.dominant_channel;
+      add((irradiance * cos_incidence *
+           std::exp(-attenuation_(channel) * (along + camera_distance_m))) *
+              beam.colour,
+          channel, shadow_ray, std::max(0.0, along - offset));
     }
   }
 
   // What a surface hit by a camera ray sends to the camera, split as
-  // radiance = veil_part + reflectance * (sum of the irradiance that reaches
-  // it); `normal` is set to the hit's shading normal on the camera's side.
+  // radiance = veil_part + albedo * (the light of ForEachIncidence);
+  // `normal` is set to the hit's shading normal on the camera's side.
   void SurfaceTerms(const Eigen::Vector3d& direction, const RayCaster::Hit& hit,
                     Eigen::Vector3d* normal, Eigen::Vector3d* veil_part,
-                    Eigen::Vector3d* reflectance) const {
-    const Eigen::Vector3d transmission = Transmission(hit.distance);
+                    Eigen::Vector3d* albedo) const {
     // The side the camera sees is lit and shaded, so an open mesh seen from
     // behind still looks like a surface rather than a hole.
     *normal = hit.normal_in_world.dot(direction) < 0.0
                   ? hit.shading_normal_in_world
                   : Eigen::Vector3d(-hit.shading_normal_in_world);
-    *veil_part = veil_.cwiseProduct(Eigen::Vector3d::Ones() - transmission);
-    *reflectance = texture_.Albedo(hit.point_in_world, hit.normal_in_world)
-                       .cast<double>()
-                       .cwiseProduct(transmission);
+    *veil_part = veil_.cwiseProduct(Eigen::Vector3d::Ones() -
+                                    Transmission(hit.distance));
+    *albedo =
+        texture_.Albedo(hit.point_in_world, hit.normal_in_world).cast<double>();
   }
 
  private:
   const Texture& texture_;
+  bool shiny_;
   Eigen::Vector3d attenuation_;
   Eigen::Vector3d veil_;
   double surface_epsilon_;
@@ -288,12 +302,12 @@ class RowRenderer {
 
     const size_t num_samples = static_cast<size_t>(width) * samples_per_pixel;
     veil_parts_.resize(num_samples);
-    reflectances_.resize(num_samples);
     radiances_.resize(num_samples);
     shadow_rays_.clear();
     shadow_lengths_.clear();
-    shadow_irradiances_.clear();
+    shadow_radiances_.clear();
     shadow_samples_.clear();
+    const bool shiny = shader_.HasShine();
     for (int col = 0; col < width; ++col) {
       const size_t first_ray = static_cast<size_t>(col) * rays_per_pixel;
       const std::optional<RayCaster::Hit>& centre_hit =
@@ -306,19 +320,34 @@ class RowRenderer {
         const std::optional<RayCaster::Hit>& hit = hits_[ray];
         if (!hit) {
           veil_parts_[sample] = shader_.Veil();
-          reflectances_[sample].setZero();
           continue;
         }
         Eigen::Vector3d normal;
+        Eigen::Vector3d albedo;
         shader_.SurfaceTerms(rays_[ray].direction, *hit, &normal,
-                             &veil_parts_[sample], &reflectances_[sample]);
+                             &veil_parts_[sample], &albedo);
+        // A shiny surface adds its lobe per light: weight (n.h)^exponent.
+        const Shine shine =
+            shiny ? shader_.ShineAt(hit->point_in_world) : Shine{};
+        const Eigen::Vector3d to_camera = -rays_[ray].direction;
         shader_.ForEachIncidence(
-            hit->point_in_world, &normal,
-            [&](const Eigen::Vector3d& irradiance, const Ray& shadow_ray,
-                double shadow_length) {
+            hit->point_in_world, &normal, hit->distance,
+            [&](const Eigen::Vector3d& light, int channel,
+                const Ray& shadow_ray, double shadow_length) {
+              double lobe = 0.0;
+              if (shine.weight > 0.0f) {
+                const double cos_half = std::max(
+                    0.0, normal.dot(
+                             (shadow_ray.direction + to_camera).normalized()));
+                lobe = shine.weight * std::pow(cos_half, shine.exponent);
+              }
+              const Eigen::Vector3d reflected =
+                  channel < 0
+                      ? Eigen::Vector3d(albedo.array() + lobe)
+                      : Eigen::Vector3d::Constant(albedo(channel) + lobe);
               shadow_rays_.push_back(shadow_ray);
               shadow_lengths_.push_back(shadow_length);
-              shadow_irradiances_.push_back(irradiance);
+              shadow_radiances_.push_back(reflected.cwiseProduct(light));
               shadow_samples_.push_back(sample);
             });
       }
@@ -327,10 +356,7 @@ class RowRenderer {
 
     radiances_ = veil_parts_;
     for (size_t i = 0; i < shadow_rays_.size(); ++i) {
-      if (occluded_[i]) continue;
-      const size_t sample = shadow_samples_[i];
-      radiances_[sample] +=
-          reflectances_[sample].cwiseProduct(shadow_irradiances_[i]);
+      if (!occluded_[i]) radiances_[shadow_samples_[i]] += shadow_radiances_[i];
     }
     for (int col = 0; col < width; ++col) {
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -348,11 +374,12 @@ class RowRenderer {
   std::vector<Ray> rays_;
   std::vector<std::optional<RayCaster::Hit>> hits_;
   std::vector<Eigen::Vector3d> veil_parts_;
-  std::vector<Eigen::Vector3d> reflectances_;
   std::vector<Eigen::Vector3d> radiances_;
   std::vector<Ray> shadow_rays_;
   std::vector<double> shadow_lengths_;
-  std::vector<Eigen::Vector3d> shadow_irradiances_;
+  // What each shadow ray's light adds to its sample's radiance if it is
+  // not occluded.
+  std::vector<Eigen::Vector3d> shadow_radiances_;
   std::vector<size_t> shadow_samples_;
   std::vector<bool> occluded_;
 };
@@ -416,18 +443,18 @@ std::vector<SnowFlake> MakeMarineSnow(const Camera& camera,
         radius_px * radius_px / (2.0 * flake.sigma_px * flake.sigma_px);
     const Eigen::Vector3d point_in_world =
         frame.world_from_cam_rotation * point_in_cam + frame.camera_in_world;
-    Eigen::Vector3d irradiance = Eigen::Vector3d::Zero();
+    // A grey particle: every channel's albedo is the same.
+    Eigen::Vector3d light = Eigen::Vector3d::Zero();
     shader.ForEachIncidence(
-        point_in_world, nullptr,
-        [&](const Eigen::Vector3d& incident, const Ray& shadow_ray,
-            double shadow_length) {
+        point_in_world, nullptr, flake.range,
+        [&](const Eigen::Vector3d& incident, int /*channel*/,
+            const Ray& shadow_ray, double shadow_length) {
           if (!caster.Occluded(shadow_ray.origin, shadow_ray.direction,
                                shadow_length)) {
-            irradiance += incident;
+            light += incident;
           }
         });
-    flake.radiance =
-        albedo * irradiance.cwiseProduct(shader.Transmission(flake.range));
+    flake.radiance = albedo * light;
     flakes.push_back(flake);
   }
   // Far to near, so that nearer flakes cover farther ones.

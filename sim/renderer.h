@@ -9,7 +9,12 @@
 //                     * exp(-c (d_light + d_cam))             (direct light)
 //            + B * (1 - exp(-c d_cam))                         (backscatter)
 // where n.l is zero in cast shadows and B = backscatter_strength *
-// backscatter_rgb is the veil seen where the ray meets nothing. Samples are
+// backscatter_rgb is the veil seen where the ray meets nothing. A shiny
+// surface (Texture::ShineAt) adds weight (n.h)^exponent to the albedo of
+// each light. Laser beams (sim/laser.h) add their light, of one wavelength:
+// reflected by the albedo of the channel of the laser's colour's strongest
+// component, attenuated by that channel's coefficient over both legs, seen
+// in every channel in the proportions of the laser's colour. Samples are
 // averaged per pixel and marine snow is composited over them; the sensor
 // then applies gain and cos^k vignetting, clips to [0, 1], encodes with the
 // sRGB tone curve as cameras do for their JPEG/PNG output (or stays linear),

@@ -38,6 +38,7 @@ void SimConfig::Check() const {
   render.Check();
   lasers.Check();
   rig.Check();
+  distractors.Check();
 }
 
 void to_json(nlohmann::json& json, const SimConfig& config) {
@@ -51,7 +52,8 @@ void to_json(nlohmann::json& json, const SimConfig& config) {
           {"navigation", config.navigation},
           {"logs", config.logs},
           {"render", config.render},
-          {"lasers", config.lasers}};
+          {"lasers", config.lasers},
+          {"distractors", config.distractors}};
 }
 
 void from_json(const nlohmann::json& json, SimConfig& config) {
@@ -72,6 +74,7 @@ void from_json(const nlohmann::json& json, SimConfig& config) {
   fields.Read("logs", &config.logs);
   fields.Read("render", &config.render);
   fields.Read("lasers", &config.lasers);
+  fields.Read("distractors", &config.distractors);
   fields.RejectUnknown();
 }
 

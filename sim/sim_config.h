@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/scene/model.h"
+#include "sim/distractors.h"
 #include "sim/laser.h"
 #include "sim/logs.h"
 #include "sim/navigation.h"
@@ -31,6 +32,9 @@ struct SimConfig {
   RenderOptions render;
   LaserOptions lasers;
   RigOptions rig;  // more cameras besides `camera`
+  // Shells, debris and shiny objects scattered on the world (none by
+  // default): bright things that are not a laser's spot.
+  DistractorOptions distractors;
 
   // 1024 x 768 SIMPLE_RADIAL with a mild barrel distortion.
   static Camera DefaultCamera();

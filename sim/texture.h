@@ -10,6 +10,14 @@
 
 namespace uw::sim {
 
+// A specular (Blinn-Phong) lobe: the renderer adds weight (n.h)^exponent
+// times the light's irradiance to the Lambertian term, h the half vector
+// between the directions to the light and to the camera.
+struct Shine {
+  float weight = 0.0f;
+  float exponent = 100.0f;
+};
+
 class Texture {
  public:
   virtual ~Texture() = default;
@@ -18,6 +26,11 @@ class Texture {
   virtual Eigen::Vector3f Albedo(
       const Eigen::Vector3d& point_in_world,
       const Eigen::Vector3d& normal_in_world) const = 0;
+  // Whether any surface shines; ShineAt is asked only then.
+  virtual bool HasShine() const { return false; }
+  virtual Shine ShineAt(const Eigen::Vector3d& /*point_in_world*/) const {
+    return {};
+  }
 };
 
 }  // namespace uw::sim

@@ -55,6 +55,14 @@ void AddDetectFlags(CommandLine* cli, DetectOptions* options) {
            "Do not use a spot in a region where the auxiliary image did not "
            "match (the texture left in, a shell or highlight can pass for "
            "the laser); 0 keeps it");
+  cli->Add("--max_colour_angle_deg", &detector.max_colour_angle_deg,
+           "A spot's colour (its increment in linear light) within this "
+           "angle of the laser's after the water (lasers.json "
+           "colour_attenuation_per_m); 180: no colour test");
+  cli->Add("--colour_noise_sigmas", &detector.colour_noise_sigmas,
+           "Noise allowance of the colour test, in sigmas");
+  cli->Add("--srgb_levels", &detector.srgb_levels,
+           "Image levels are sRGB-encoded (camera files); 0: linear");
   cli->Add("--num_threads", &detector.num_threads, "Threads (<= 0: all)");
 }
 
