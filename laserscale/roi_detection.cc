@@ -15,6 +15,12 @@
 #include "laserscale/spot_segmentation.h"
 
 namespace uw::lsd {
+namespace {
+
+// Spots of another colour left out before giving up on a ROI.
+constexpr int kColourRetries = 2;
+
+}  // namespace
 
 cv::Mat CleanImage(const Roi& roi, const cv::Mat& main, int sign,
                    const SpotDetectorOptions& options) {
@@ -122,10 +128,13 @@ SpotRgb SpotColour(const Roi& roi, const RoiRun& run, double noise_sigma,
     if (c == run.channel && (clipped || !solvable)) {
       // Its top clipped: the censored fit's peak.
       amplitude = fitted_peak;
-      amplitude_sigma = noise_sigma / std::sqrt(shape_squared);
-    } else if (!solvable) {
-      amplitude = clipped ? options.saturation_level - base : 0.0;
+      amplitude_sigma = noise_sigma / std::sqrt(std::max(shape_squared, 1.0));
+    } else if (!solvable && clipped) {
+      amplitude = options.saturation_level - base;
       amplitude_sigma = 0.0;
+    } else if (!solvable) {
+      colour.measured = false;
+      continue;
     }
     const int rgb = 2 - c;
     colour.rgb(rgb) = LinearLevel(base + amplitude, options.srgb_levels) -
@@ -303,28 +312,40 @@ std::optional<RoiRun> PrepareRoi(const cv::Mat& image, const cv::Mat& aux,
   }
   std::optional<RoiRun> nominal =
       DetectInRoi(*roi, roi->main, 1, roi->background, 0.0, -1, options);
-  if (nominal && options.max_colour_angle_deg < 180.0) {
+  if (options.max_colour_angle_deg < 180.0) {
     // The image's noise (options' or the robust σ of the ROI's second
-    // differences), and the aux's in the difference.
+    // differences, at least 8-bit quantisation's), and the aux's in the
+    // difference.
     double noise_sigma = options.noise_sigma;
     if (noise_sigma < 0.0) {
       std::vector<float> values;
       AppendSecondDifferences(roi->main, &values);
-      noise_sigma = SecondDifferenceSigma(&values);
+      noise_sigma =
+          std::max(SecondDifferenceSigma(&values), 1.0 / std::sqrt(12.0));
     }
     if (!roi->aux.empty() && options.aux_equally_noisy) {
       noise_sigma *= std::hypot(1.0, roi->aux_noise_gain);
     }
-    const SpotRgb colour = SpotColour(*roi, *nominal, noise_sigma, options);
-    double angle_deg = 0.0;
-    if (!IsLaserColour(colour, roi->colour.rgb, options, &angle_deg)) {
-      roi->colour_note = fmt::format(
-          "a bright spot on the beam at ({:.1f}, {:.1f}) is not the laser's "
-          "colour: {:.0f} deg from it (linear RGB {:.3g}, {:.3g}, {:.3g})",
-          nominal->spot.mean.x() + roi->rect.x,
-          nominal->spot.mean.y() + roi->rect.y, angle_deg, colour.rgb(0),
-          colour.rgb(1), colour.rgb(2));
-      return std::nullopt;
+    // A spot not of the laser's colour is left out (with its
+    // surroundings, for the Monte Carlo too) and the next brightest tried:
+    // a shell on the beam must not hide the laser's spot further along.
+    for (int attempt = 0; nominal; ++attempt) {
+      const SpotRgb colour = SpotColour(*roi, *nominal, noise_sigma, options);
+      double angle_deg = 0.0;
+      if (IsLaserColour(colour, roi->colour.rgb, options, &angle_deg)) break;
+      if (roi->colour_note.empty()) {
+        roi->colour_note = fmt::format(
+            "a bright spot on the beam at ({:.1f}, {:.1f}) is not the "
+            "laser's colour: {:.0f} deg from it (linear RGB {:.3g}, {:.3g}, "
+            "{:.3g})",
+            nominal->spot.mean.x() + roi->rect.x,
+            nominal->spot.mean.y() + roi->rect.y, angle_deg, colour.rgb(0),
+            colour.rgb(1), colour.rgb(2));
+      }
+      if (attempt == kColourRetries) return std::nullopt;
+      roi->valid.setTo(0, nominal->window);
+      nominal =
+          DetectInRoi(*roi, roi->main, 1, roi->background, 0.0, -1, options);
     }
   }
   if (nominal) {

@@ -53,7 +53,7 @@ bool IsLaserColour(const SpotRgb& colour, const Eigen::Vector3d& expected,
   const double across = (rgb - along * expected).norm();
   *angle_deg = std::atan2(across, along) * 180.0 / M_PI;
   if (options.max_colour_angle_deg >= 180.0) return true;
-  if (!(along > 0.0)) return false;
+  if (!colour.measured || !(along > 0.0)) return false;
   // The noise of the part across `expected`, in its direction.
   const Eigen::Vector3d direction =
       across > 0.0 ? Eigen::Vector3d((rgb - along * expected) / across)

@@ -42,14 +42,16 @@ double LinearLevel(double level, bool srgb);
 struct SpotRgb {
   Eigen::Vector3d rgb = Eigen::Vector3d::Zero();
   Eigen::Vector3d sigma = Eigen::Vector3d::Zero();
+  // false: a channel had too few pixels to measure (and did not clip).
+  bool measured = true;
 };
 
 // Whether a spot's colour may be the laser's light of colour `expected`
-// (unit, linear RGB: LaserColour::rgb): its part across `expected` is
-// within max_colour_angle_deg of its part along it, or within
-// colour_noise_sigmas σ of its noise (in its own direction); the angle between
-// them goes to `angle_deg`. A spot darker than its background along `expected`
-// is not.
+// (unit, linear RGB: LaserColour::rgb): its part across `expected` is at
+// most tan(max_colour_angle_deg) times its part along it plus
+// colour_noise_sigmas σ of its noise (in its own direction); the angle
+// between them goes to `angle_deg`. A spot darker than its background
+// along `expected`, or not measured, is not.
 bool IsLaserColour(const SpotRgb& colour, const Eigen::Vector3d& expected,
                    const SpotDetectorOptions& options, double* angle_deg);
 

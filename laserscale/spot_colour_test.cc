@@ -61,12 +61,15 @@ TEST(IsLaserColour, TellsTheLaserFromTheLamp) {
   EXPECT_FALSE(
       lsd::IsLaserColour({{-0.2, 0.0, 0.0}, noise}, red, options, &angle));
   // 60 deg off: refused when measured well, kept within its noise (the
-  // part across, 0.087, within tan(max) 0.05 + 3 x 0.02).
+  // part across, 0.087, within tan(45 deg) 0.05 + 2 x 0.025).
   const Eigen::Vector3d off(std::cos(M_PI / 3), std::sin(M_PI / 3), 0.0);
   EXPECT_FALSE(lsd::IsLaserColour({0.1 * off, noise}, red, options, &angle));
-  EXPECT_TRUE(lsd::IsLaserColour({0.1 * off, Eigen::Vector3d::Constant(0.02)},
+  EXPECT_TRUE(lsd::IsLaserColour({0.1 * off, Eigen::Vector3d::Constant(0.025)},
                                  red, options, &angle));
   EXPECT_NEAR(angle, 60.0, 1e-9);
+  lsd::SpotRgb unmeasured{{0.2, 0.01, 0.0}, noise};
+  unmeasured.measured = false;
+  EXPECT_FALSE(lsd::IsLaserColour(unmeasured, red, options, &angle));
   SpotDetectorOptions off_test = options;
   off_test.max_colour_angle_deg = 180.0;
   EXPECT_TRUE(

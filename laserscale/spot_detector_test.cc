@@ -103,6 +103,31 @@ TEST(DetectSpots, BadInputIsAnErrorOrAProblemNeverNaN) {
   EXPECT_EQ(nothing.detection_rate, 0.0);
 }
 
+// A white blob on the beam, brighter than the laser's red spot: it is not
+// the laser's colour, so it is left out and the spot is found; with the
+// colour test off the blob wins.
+TEST(DetectSpots, AWhiteBlobOnTheBeamDoesNotHideTheSpot) {
+  const Camera camera = PinholeCamera(320, 240, 400.0);
+  cv::Mat background = Flat(320, 240);
+  for (int r = 117; r < 123; ++r) {
+    for (int c = 193; c < 199; ++c) {
+      background.at<cv::Vec3f>(r, c) += cv::Vec3f(120.0f, 120.0f, 120.0f);
+    }
+  }
+  const cv::Mat image = WithSpot(background, {180.0, 120.0}, 60.0,
+                                 Eigen::Matrix2d::Identity() * 3.0, 1.0, 4);
+  SpotDetectorOptions options;
+  options.monte_carlo_iterations = 20;
+  const DetectedSpot spot =
+      DetectSpots(image, cv::Mat(), camera, OneLaser(), options, 1)[0];
+  ASSERT_TRUE(spot.stable) << spot.problem;
+  EXPECT_LT((spot.pixel - Eigen::Vector2d(180.0, 120.0)).norm(), 0.5);
+  options.max_colour_angle_deg = 180.0;
+  const DetectedSpot blob =
+      DetectSpots(image, cv::Mat(), camera, OneLaser(), options, 1)[0];
+  EXPECT_GT((blob.pixel - Eigen::Vector2d(180.0, 120.0)).norm(), 10.0);
+}
+
 TEST(DetectBrightestPixel, IsTheCentreOfTheBrightestPixels) {
   const Camera camera = PinholeCamera(320, 240, 400.0);
   cv::Mat image = WithSpot(Flat(320, 240), {0, 0}, 0.0,

@@ -108,7 +108,8 @@ struct LaserBeam {
   Eigen::Vector3d direction_in_world = Eigen::Vector3d::UnitZ();  // unit
   Eigen::Vector3d colour = Eigen::Vector3d::Ones();
   // The channel of the laser's wavelength (its colour's strongest, RGB
-  // order): the water attenuates its light by that channel's coefficient.
+  // order; the first of equals, so a white laser is rendered as red
+  // light): the water attenuates its light by that channel's coefficient.
   int dominant_channel = 0;
   BeamOptics optics;
 

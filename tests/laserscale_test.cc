@@ -461,8 +461,8 @@ TEST(Laserscale, EstimateFlagsBadItemsAndRefusesBadInputs) {
 // Issue 17, acceptance 4, through the commands: uwsim worlds strewn with
 // white shells, coloured debris and shiny objects, their laser images
 // taken with laser L0 switched off. `laserscale detect` reports no stable
-// spot for L0 nor away from a lit laser's spot, and finds the lit spots as
-// often as without the colour test.
+// spot for L0 nor away from a lit laser's spot, and finds the lit spots at
+// least as often as without the colour test.
 TEST(Laserscale, DetectFindsNoSpotOfASwitchedOffLaserAmongDistractors) {
   const fs::path dir = FreshTestDir("uw_laserscale_distractors");
   std::ofstream(dir / "config.json") << R"({
@@ -533,7 +533,9 @@ TEST(Laserscale, DetectFindsNoSpotOfASwitchedOffLaserAmongDistractors) {
               << " without)\n";
     EXPECT_EQ(with[0], 0) << world;
     EXPECT_GE(with[2], 20) << world;
-    EXPECT_EQ(with[1], without[1]) << world;
+    // Masking a spot of another colour lets the next on the beam be
+    // tried: as many lit spots or more.
+    EXPECT_GE(with[1], without[1]) << world;
   }
 }
 

@@ -56,9 +56,9 @@ void AddDetectFlags(CommandLine* cli, DetectOptions* options) {
            "match (the texture left in, a shell or highlight can pass for "
            "the laser); 0 keeps it");
   cli->Add("--max_colour_angle_deg", &detector.max_colour_angle_deg,
-           "A spot's colour (its increment in linear light) within this "
-           "angle of the laser's after the water (lasers.json "
-           "colour_attenuation_per_m); 180: no colour test");
+           "A spot's colour (its amplitude per channel in linear light) "
+           "within this angle of the laser's (lasers.json colour), or it "
+           "is not detected; 180: no colour test");
   cli->Add("--colour_noise_sigmas", &detector.colour_noise_sigmas,
            "Noise allowance of the colour test, in sigmas");
   cli->Add("--srgb_levels", &detector.srgb_levels,
