@@ -166,8 +166,8 @@ struct SceneOptions {
   int jpeg_quality = 0;
   double noise_sigma = 2.0;
   // Something bright where each beam meets the plane: "shell" (white, 3 cm
-  // radius), "debris" (3 cm, a colour of sim/distractors.h's palette per
-  // laser), "shiny" (a 4 cm shiny dome: a glint of the lamp); or "none".
+  // radius), "debris" (3 cm, one of sim::DebrisColours() per laser), "shiny" (a
+  // 4 cm shiny dome: a glint of the lamp); or "none".
   std::string distractor = "none";
   // Lasers switched off in the image (indices into set-up C's four).
   std::vector<size_t> lasers_off;
@@ -243,10 +243,8 @@ void RenderShot(const SceneOptions& scene, uint64_t seed, Shot* out) {
   std::vector<sim::Distractor> distractors;
   if (scene.distractor != "none") {
     const RayCaster plane(mesh);
-    const Eigen::Vector3f palette[] = {{0.85f, 0.75f, 0.1f},
-                                       {0.15f, 0.6f, 0.2f},
-                                       {0.1f, 0.3f, 0.8f},
-                                       {0.85f, 0.85f, 0.8f}};
+    // Yellow, green, blue and off-white debris, one per laser.
+    const size_t debris_colour[] = {0, 1, 2, 4};
     for (size_t l = 0; l < lasers.size(); ++l) {
       const Eigen::Vector3d at =
           sim::TrueLaserSpot(plane, camera, Rigid3d(), lasers[l])
@@ -254,7 +252,8 @@ void RenderShot(const SceneOptions& scene, uint64_t seed, Shot* out) {
       if (scene.distractor == "shell") {
         distractors.push_back(sim::Shell(at, 0.03));
       } else if (scene.distractor == "debris") {
-        distractors.push_back(sim::Debris(at, 0.03, palette[l % 4]));
+        distractors.push_back(
+            sim::Debris(at, 0.03, sim::DebrisColours()[debris_colour[l % 4]]));
       } else {
         ASSERT_EQ(scene.distractor, "shiny");
         AddSphere(at, 0.04, &mesh);

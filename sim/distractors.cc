@@ -41,6 +41,15 @@ Distractor ShinyObject(const Eigen::Vector3d& centre, double radius_m) {
   return {centre, radius_m, Eigen::Vector3f(0.3f, 0.3f, 0.3f), {0.9f, 50.0f}};
 }
 
+const std::vector<Eigen::Vector3f>& DebrisColours() {
+  static const std::vector<Eigen::Vector3f> colours = {{0.85f, 0.75f, 0.1f},
+                                                       {0.15f, 0.6f, 0.2f},
+                                                       {0.1f, 0.3f, 0.8f},
+                                                       {0.6f, 0.35f, 0.15f},
+                                                       {0.85f, 0.85f, 0.8f}};
+  return colours;
+}
+
 void DistractorOptions::Check() const {
   const auto fail = [](const char* field, double value, const char* rule) {
     throw ErrorAt("distractors: ", field, " = ", value, ": ", rule);
@@ -110,13 +119,6 @@ std::vector<Distractor> ScatterDistractors(const TriangleMesh& mesh,
   const auto radius = [&] {
     return random.Uniform(options.min_radius_m, options.max_radius_m);
   };
-  // Colours a red laser's spot does not have: yellow, green, blue,
-  // orange-brown, white.
-  const Eigen::Vector3f palette[] = {{0.85f, 0.75f, 0.1f},
-                                     {0.15f, 0.6f, 0.2f},
-                                     {0.1f, 0.3f, 0.8f},
-                                     {0.6f, 0.35f, 0.15f},
-                                     {0.85f, 0.85f, 0.8f}};
   const auto count = [&](double per_m2) {
     return static_cast<size_t>(std::llround(per_m2 * area));
   };
@@ -127,7 +129,9 @@ std::vector<Distractor> ScatterDistractors(const TriangleMesh& mesh,
   for (size_t i = 0; i < count(options.debris_per_m2); ++i) {
     const Eigen::Vector3d centre = point_on_mesh();
     const double r = radius();
-    distractors.push_back(Debris(centre, r, palette[random.Next() % 5]));
+    const std::vector<Eigen::Vector3f>& colours = DebrisColours();
+    distractors.push_back(
+        Debris(centre, r, colours[random.Next() % colours.size()]));
   }
   for (size_t i = 0; i < count(options.shiny_per_m2); ++i) {
     const Eigen::Vector3d centre = point_on_mesh();

@@ -36,6 +36,10 @@ Distractor Debris(const Eigen::Vector3d& centre, double radius_m,
                   const Eigen::Vector3f& albedo);
 Distractor ShinyObject(const Eigen::Vector3d& centre, double radius_m);
 
+// The debris colours (linear RGB): yellow, green, blue, orange-brown,
+// off-white.
+const std::vector<Eigen::Vector3f>& DebrisColours();
+
 // Distractors scattered on a world's mesh, for uwsim scenes.
 struct DistractorOptions {
   double shells_per_m2 = 0.0;
@@ -53,8 +57,8 @@ void to_json(nlohmann::json& json, const DistractorOptions& options);
 void from_json(const nlohmann::json& json, DistractorOptions& options);
 
 // Uniformly over the mesh's area (the counts are density x area, rounded),
-// radii uniform in [min, max], debris of a palette unlike red lasers'
-// (yellow, green, blue, orange-brown, white); deterministic for a seed.
+// radii uniform in [min, max], debris of DebrisColours(); deterministic for
+// a seed.
 std::vector<Distractor> ScatterDistractors(const TriangleMesh& mesh,
                                            const DistractorOptions& options,
                                            uint64_t seed);
