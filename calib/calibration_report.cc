@@ -1,17 +1,18 @@
 #include "calib/calibration_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "calib/projection_uncertainty_plot.h"
 #include "common/util/error.h"
+#include "common/util/figure.h"
 #include "common/util/file.h"
-#include "common/util/plot.h"
+#include "common/util/png_file.h"
 
 namespace uw {
 namespace {
@@ -28,15 +29,9 @@ double InlierRms(const MrcalCalibration& camera, size_t view, int* inliers) {
   return std::sqrt(sum_squares / std::max(*inliers, 1));
 }
 
-PendingFile PngFile(const std::filesystem::path& path, const cv::Mat& image) {
-  std::vector<uchar> bytes;
-  if (!cv::imencode(".png", image, bytes)) {
-    throw ErrorAt(path.string(), ": cannot encode the plot");
-  }
-  return {path, [bytes](std::ostream& out) {
-            out.write(reinterpret_cast<const char*>(bytes.data()),
-                      static_cast<std::streamsize>(bytes.size()));
-          }};
+PendingFile BytesFile(const std::filesystem::path& path, std::string bytes) {
+  return {path,
+          [bytes = std::move(bytes)](std::ostream& out) { out << bytes; }};
 }
 
 // Four significant digits: the JSON's grid is for reading, not for
@@ -97,10 +92,11 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
   uncertainty.Check();
   std::vector<PendingFile> files;
   nlohmann::json json_cameras = nlohmann::json::array();
-  Plot residuals("Reprojection residuals (projected - observed)", "dx [px]",
-                 "dy [px]", 700, 700);
-  Plot per_image("Inlier RMS per image", "image (in corners.vnl order)",
-                 "RMS [px]");
+  Figure residuals("Reprojection residuals (projected \u2212 observed)",
+                   "dx (px)", "dy (px)", 7.0, 7.0);
+  residuals.EqualAspect();
+  Figure per_image("Inlier RMS per image", "image (in corners.vnl order)",
+                   "RMS (px)", 10.0, 5.0);
   std::vector<double> outlier_x;
   std::vector<double> outlier_y;
   for (size_t c = 0; c < result.cameras.size(); ++c) {
@@ -129,8 +125,8 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
       }
     }
     const std::string label = "camera " + std::to_string(c);
-    residuals.Points(dx, dy, Plot::Colour(static_cast<int>(c)), label);
-    per_image.Points(index, rms, Plot::Colour(static_cast<int>(c)), label);
+    residuals.Points(dx, dy, Figure::Colour(static_cast<int>(c)), label);
+    per_image.Points(index, rms, Figure::Colour(static_cast<int>(c)), label);
     const ProjectionUncertaintyMap map =
         MapProjectionUncertainty(camera, uncertainty);
     const bool rig = result.cameras.size() > 1;
@@ -139,12 +135,15 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
     title += uncertainty.distance > 0.0
                  ? fmt::format(", looking out to {:g} m", uncertainty.distance)
                  : ", looking out to infinity";
-    files.push_back(PngFile(
+    const std::filesystem::path map_path =
         dir /
-            (rig ? "projection_uncertainty-camera-" + std::to_string(c) + ".png"
-                 : std::string("projection_uncertainty.png")),
-        RenderProjectionUncertainty(map, camera.image_width,
-                                    camera.image_height, title)));
+        (rig ? "projection_uncertainty-camera-" + std::to_string(c) + ".png"
+             : std::string("projection_uncertainty.png"));
+    files.push_back(BytesFile(
+        map_path,
+        EncodePng(RenderProjectionUncertainty(map, camera.image_width,
+                                              camera.image_height, title),
+                  map_path)));
     const Rigid3d& cam_from_rig = result.cam_from_rig[c];
     const Eigen::Quaterniond& q = cam_from_rig.rotation;
     json_cameras.push_back(
@@ -176,7 +175,16 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
          }});
   }
   if (!outlier_x.empty()) {
-    residuals.Points(outlier_x, outlier_y, cv::Scalar(40, 40, 230), "outliers");
+    residuals.Points(outlier_x, outlier_y, "black", "outliers");
+  }
+  // Views are in the same order for every camera of a rig: the first
+  // camera's names label them.
+  if (std::all_of(result.cameras.begin(), result.cameras.end(),
+                  [&](const MrcalCalibration& camera) {
+                    return camera.images.size() ==
+                           result.cameras[0].images.size();
+                  })) {
+    per_image.ItemAxis(result.cameras[0].images);
   }
   const MrcalCalibration& first = result.cameras.at(0);
   const nlohmann::json report = {
@@ -195,8 +203,14 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
   files.push_back({dir / "calibration.json", [&](std::ostream& stream) {
                      stream << report.dump(1) << "\n";
                    }});
-  files.push_back(PngFile(dir / "residuals.png", residuals.Render()));
-  files.push_back(PngFile(dir / "residuals_per_image.png", per_image.Render()));
+  const std::vector<FigureFiles> drawn = DrawFigures({residuals, per_image});
+  const char* const names[] = {"residuals", "residuals_per_image"};
+  for (size_t i = 0; i < drawn.size(); ++i) {
+    files.push_back(
+        BytesFile(dir / (std::string(names[i]) + ".png"), drawn[i].png));
+    files.push_back(
+        BytesFile(dir / (std::string(names[i]) + ".svg"), drawn[i].svg));
+  }
   WriteFilesAtomically(files, true);
 }
 

@@ -14,9 +14,10 @@ namespace uw {
 // Writes into `dir`, all or nothing: camera-N.cameramodel per camera;
 // calibration.json (lens model, RMS, outliers, warp, per camera its
 // intrinsics, pose, per image the RMS of its inliers and its outliers, and
-// its projection uncertainty on a 16-column grid); residuals.png (every
-// corner's residual, outliers apart), residuals_per_image.png (each
-// image's inlier RMS) and projection_uncertainty.png (a rig's:
+// its projection uncertainty on a 16-column grid); the figures
+// residuals.png/.svg (every corner's residual, outliers apart) and
+// residuals_per_image.png/.svg (each image's inlier RMS, by name); and
+// projection_uncertainty.png (a rig's:
 // projection_uncertainty-camera-N.png), the heat map of `uncertainty`'s
 // map. `globs` name the cameras; `command` goes into the files' comments.
 void WriteCalibrationReport(const MrcalRigCalibration& result,

@@ -9,10 +9,10 @@
 
 #include "common/util/csv.h"
 #include "common/util/error.h"
+#include "common/util/figure.h"
 #include "common/util/file.h"
 #include "common/util/html.h"
 #include "common/util/json_fields.h"
-#include "common/util/plot.h"
 
 namespace uw {
 namespace {
@@ -298,12 +298,16 @@ void WriteScaleReport(const ModelScaleReport& report,
                       const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   const CombinedScale& model = report.model;
-  // Plots.
-  Plot scales("Scale per image: nominal, 95 % Monte Carlo interval, items",
-              "image", "scale s", 1000, 520);
+  // Figures.
+  std::vector<Figure> figures;
+  std::vector<std::string> figure_names;
+  Figure scales("Scale per image: nominal, 95 % Monte Carlo interval, items",
+                "laser image", "scale s", 10.0, 5.2);
+  std::vector<std::string> names;
   std::vector<double> x, nominal, low, high, item_x, item_y;
   for (size_t i = 0; i < report.images.size(); ++i) {
     const ImageEstimate& image = report.images[i];
+    names.push_back(image.name);
     if (!image.result || !image.result->nominal) continue;
     const ImageScaleResult& r = *image.result;
     x.push_back(static_cast<double>(i));
@@ -316,25 +320,28 @@ void WriteScaleReport(const ModelScaleReport& report,
       item_y.push_back(*item.nominal.scale);
     }
   }
-  scales.ErrorBars(x, low, high, Plot::Colour(0), "image 95 % interval");
-  scales.Points(x, nominal, Plot::Colour(3), "image nominal");
-  scales.Points(item_x, item_y, Plot::Colour(2), "laser / pair nominal");
+  scales.ItemAxis(names);
+  scales.ErrorBars(x, low, high, Figure::Colour(0), "image 95 % interval");
+  scales.Points(x, nominal, Figure::Colour(3), "image nominal");
+  scales.Points(item_x, item_y, Figure::Colour(2), "laser / pair nominal");
   if (model.nominal) {
-    scales.HorizontalLine(*model.nominal, Plot::Colour(1), "model scale");
-    scales.HorizontalLine(model.ci95_low, Plot::Colour(7), "model 95 % CI");
-    scales.HorizontalLine(model.ci95_high, Plot::Colour(7));
+    scales.HorizontalLine(*model.nominal, Figure::Colour(1), "model scale");
+    scales.HorizontalLine(model.ci95_low, Figure::Colour(7), "model 95 % CI");
+    scales.HorizontalLine(model.ci95_high, Figure::Colour(7));
   }
-  scales.WritePng(dir / "scales.png");
+  figures.push_back(scales);
+  figure_names.push_back("scales");
   if (model.monte_carlo.num_samples > 0) {
-    Plot histogram("Monte Carlo distribution of the model's scale", "scale s",
-                   "iterations");
-    histogram.Histogram(model.per_iteration, 40, Plot::Colour(0));
-    histogram.VerticalLine(*model.nominal, Plot::Colour(1), "scale");
-    histogram.VerticalLine(model.ci95_low, Plot::Colour(7), "95 % CI");
-    histogram.VerticalLine(model.ci95_high, Plot::Colour(7));
-    histogram.WritePng(dir / "histogram.png");
-    Plot convergence("Monte Carlo convergence (running mean +- sigma)",
-                     "iterations", "scale s");
+    Figure histogram("Monte Carlo distribution of the model's scale", "scale s",
+                     "iterations", 7.0, 4.5);
+    histogram.Histogram(model.per_iteration, 40, Figure::Colour(0));
+    histogram.VerticalLine(*model.nominal, Figure::Colour(1), "scale");
+    histogram.VerticalLine(model.ci95_low, Figure::Colour(7), "95 % CI");
+    histogram.VerticalLine(model.ci95_high, Figure::Colour(7));
+    figures.push_back(histogram);
+    figure_names.push_back("histogram");
+    Figure convergence("Monte Carlo convergence (running mean \u00b1 \u03c3)",
+                       "iterations", "scale s", 7.0, 4.5);
     std::vector<double> n, mean, minus, plus;
     double sum = 0.0, squares = 0.0;
     size_t count = 0;
@@ -354,10 +361,11 @@ void WriteScaleReport(const ModelScaleReport& report,
       minus.push_back(m - sd);
       plus.push_back(m + sd);
     }
-    convergence.Line(n, mean, Plot::Colour(0), "mean");
-    convergence.Line(n, minus, Plot::Colour(2), "mean - sigma");
-    convergence.Line(n, plus, Plot::Colour(2), "mean + sigma");
-    convergence.WritePng(dir / "convergence.png");
+    convergence.Line(n, mean, Figure::Colour(0), "mean");
+    convergence.Line(n, minus, Figure::Colour(2), "mean \u2212 \u03c3");
+    convergence.Line(n, plus, Figure::Colour(2), "mean + \u03c3");
+    figures.push_back(convergence);
+    figure_names.push_back("convergence");
   }
   // Tables.
   std::ostringstream images_csv;
@@ -464,10 +472,13 @@ void WriteScaleReport(const ModelScaleReport& report,
   }
   html << "<p>How to read it: docs/laserscale.md. Files: scale.json, "
           "images.csv, items.csv, segments.csv.</p>\n";
-  html << "<h2>Per image</h2><img src=\"scales.png\" width=\"1000\">\n";
+  html << "<h2>Per image</h2><a href=\"scales.svg\"><img src=\"scales.png\" "
+          "width=\"1000\"></a>\n";
   if (model.monte_carlo.num_samples > 0) {
-    html << "<h2>Monte Carlo</h2><img src=\"histogram.png\" width=\"700\">"
-            "<img src=\"convergence.png\" width=\"700\">\n";
+    html << "<h2>Monte Carlo</h2><a href=\"histogram.svg\"><img "
+            "src=\"histogram.png\" width=\"700\"></a><a "
+            "href=\"convergence.svg\"><img src=\"convergence.png\" "
+            "width=\"700\"></a>\n";
   }
   html << "<h2>Segments</h2><table><tr><th>segment</th><th>images</th>"
           "<th>scale</th><th>95 % interval</th><th>Birge ratio</th></tr>\n";
@@ -504,12 +515,18 @@ void WriteScaleReport(const ModelScaleReport& report,
   const auto text = [](const std::string& content) {
     return [content](std::ostream& out) { out << content; };
   };
-  WriteFilesAtomically({{dir / "scale.json", text(ScaleJsonText(report))},
-                        {dir / "images.csv", text(images_csv.str())},
-                        {dir / "items.csv", text(items_csv.str())},
-                        {dir / "segments.csv", text(segments_csv.str())},
-                        {dir / "index.html", text(html.str())}},
-                       false);
+  std::vector<PendingFile> files = {
+      {dir / "scale.json", text(ScaleJsonText(report))},
+      {dir / "images.csv", text(images_csv.str())},
+      {dir / "items.csv", text(items_csv.str())},
+      {dir / "segments.csv", text(segments_csv.str())},
+      {dir / "index.html", text(html.str())}};
+  const std::vector<FigureFiles> drawn = DrawFigures(figures);
+  for (size_t i = 0; i < drawn.size(); ++i) {
+    files.push_back({dir / (figure_names[i] + ".png"), text(drawn[i].png)});
+    files.push_back({dir / (figure_names[i] + ".svg"), text(drawn[i].svg)});
+  }
+  WriteFilesAtomically(files, true);
 }
 
 ScaleJson ReadScaleFromJson(const std::filesystem::path& path) {

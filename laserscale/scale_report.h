@@ -9,7 +9,7 @@
 // of each other (the thesis's 1 m), where the scale may be taken constant.
 //
 // Written by `laserscale estimate`: scale.json (the result `apply` reads),
-// images.csv, items.csv, segments.csv, PNG plots and index.html.
+// images.csv, items.csv, segments.csv, figures (PNG and SVG) and index.html.
 #pragma once
 
 #include <filesystem>

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "common/util/error.h"
+#include "common/util/file.h"
 #include "common/util/random.h"
+#include "tests/support/svg_ticks.h"
 
 namespace uw {
 namespace {
@@ -109,8 +111,18 @@ TEST(WriteScaleReport, WritesEveryFileAndApplyReadsTheScale) {
   WriteScaleReport(report, dir);
   for (const char* file :
        {"scale.json", "images.csv", "items.csv", "segments.csv", "index.html",
-        "scales.png", "histogram.png", "convergence.png"}) {
+        "scales.png", "histogram.png", "convergence.png", "scales.svg",
+        "histogram.svg", "convergence.svg"}) {
     EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
+  }
+  // Readable axes: the images by name, scales at 1-2-5 steps.
+  const std::string scales = ReadFileToString(dir / "scales.svg");
+  EXPECT_EQ(SvgTickLabels(scales, 'x'), std::vector<std::string>{"L1.png"});
+  EXPECT_EQ(TickProblem(SvgTickLabels(scales, 'y')), "");
+  for (const char* figure : {"histogram.svg", "convergence.svg"}) {
+    const std::string svg = ReadFileToString(dir / figure);
+    EXPECT_EQ(TickProblem(SvgTickLabels(svg, 'x')), "") << figure;
+    EXPECT_EQ(TickProblem(SvgTickLabels(svg, 'y')), "") << figure;
   }
   EXPECT_NEAR(ReadScaleFromJson(dir / "scale.json").scale, 0.99, 1e-12);
 

@@ -23,7 +23,7 @@ constexpr double kRadius95 = 2.4477;
 void DrawEllipse(cv::Mat* canvas, const Eigen::Vector2d& centre,
                  const Eigen::Matrix2d& covariance, double radius,
                  const Eigen::Vector2d& origin, double zoom,
-                 const cv::Scalar& colour) {
+                 const cv::Scalar& colour, int thickness) {
   constexpr int kShift = 4;
   constexpr double kUnit = 1 << kShift;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(covariance);
@@ -39,7 +39,7 @@ void DrawEllipse(cv::Mat* canvas, const Eigen::Vector2d& centre,
               cv::Size(static_cast<int>(std::lround(axes(1) * kUnit)),
                        static_cast<int>(std::lround(axes(0) * kUnit))),
               std::atan2(major.y(), major.x()) * 180.0 / M_PI, 0.0, 360.0,
-              colour, 1, cv::LINE_AA, kShift);
+              colour, thickness, cv::LINE_AA, kShift);
 }
 
 cv::Point ToPoint(const Eigen::Vector2d& pixel, const Eigen::Vector2d& origin,
@@ -54,38 +54,46 @@ const cv::Scalar kColour95(0, 220, 255);
 const cv::Scalar kColourIteration(255, 200, 120);
 const cv::Scalar kColourProblem(40, 40, 255);
 
-// Draws one spot's marks at `zoom` with `origin` at the canvas corner.
+// How much thicker and larger marks and text are drawn on an image `cols`
+// wide: 1 up to 1500 px, so that a 27 MP frame viewed whole (or shrunk
+// into a report) still shows them.
+int MarkScale(int cols) { return std::max(1, (cols + 750) / 1500); }
+
+// Draws one spot's marks at `zoom` with `origin` at the canvas corner,
+// lines `scale` pixels thick.
 void DrawSpot(cv::Mat* canvas, const DetectedSpot& spot,
-              const Eigen::Vector2d& origin, double zoom) {
+              const Eigen::Vector2d& origin, double zoom, int scale) {
   if (!spot.iterations.empty()) {
     // Half-transparent, so that the cloud does not hide the spot.
     cv::Mat dots = canvas->clone();
     for (const auto& [centre, covariance] : spot.iterations) {
       cv::circle(dots, ToPoint(centre, origin, zoom),
-                 std::max(1, static_cast<int>(zoom / 4)), kColourIteration, -1,
-                 cv::LINE_AA);
+                 std::max(scale, static_cast<int>(zoom / 4)), kColourIteration,
+                 -1, cv::LINE_AA);
     }
     cv::addWeighted(dots, 0.5, *canvas, 0.5, 0.0, *canvas);
   }
   const cv::Scalar marker = spot.stable ? kColour68 : kColourProblem;
   if (spot.stable) {
     DrawEllipse(canvas, spot.pixel, spot.covariance, kRadius68, origin, zoom,
-                kColour68);
+                kColour68, scale);
     DrawEllipse(canvas, spot.pixel, spot.covariance, kRadius95, origin, zoom,
-                kColour95);
+                kColour95, scale);
   }
   // A cross with a gap, visible at any zoom without hiding the spot.
   const cv::Point at = ToPoint(spot.pixel, origin, zoom);
-  const int gap = std::max(6, static_cast<int>(3 * zoom));
-  const int arm = gap + 8;
-  cv::line(*canvas, at + cv::Point(gap, 0), at + cv::Point(arm, 0), marker, 1);
-  cv::line(*canvas, at - cv::Point(gap, 0), at - cv::Point(arm, 0), marker, 1);
-  cv::line(*canvas, at + cv::Point(0, gap), at + cv::Point(0, arm), marker, 1);
-  cv::line(*canvas, at - cv::Point(0, gap), at - cv::Point(0, arm), marker, 1);
+  const int gap = std::max(6 * scale, static_cast<int>(3 * zoom));
+  const int arm = gap + 8 * scale;
+  for (const cv::Point& direction :
+       {cv::Point(1, 0), cv::Point(-1, 0), cv::Point(0, 1), cv::Point(0, -1)}) {
+    cv::line(*canvas, at + gap * direction, at + arm * direction, marker,
+             scale);
+  }
   const std::string label =
       spot.stable ? spot.laser : spot.laser + ": " + spot.problem;
-  cv::putText(*canvas, label, at + cv::Point(arm + 2, -arm),
-              cv::FONT_HERSHEY_SIMPLEX, 0.4, marker, 1, cv::LINE_AA);
+  cv::putText(*canvas, label, at + cv::Point(arm + 2 * scale, -arm),
+              cv::FONT_HERSHEY_SIMPLEX, 0.4 * scale, marker, scale,
+              cv::LINE_AA);
 }
 
 }  // namespace
@@ -103,29 +111,31 @@ cv::Mat DrawSpotOverlay(const cv::Mat& image,
                   image.type());
   }
   const cv::Mat source = canvas.clone();
+  const int scale = MarkScale(canvas.cols);
   std::vector<const DetectedSpot*> located;
   int undetected_line = 0;
   for (const DetectedSpot& spot : spots) {
     if (spot.detected) {
-      DrawSpot(&canvas, spot, Eigen::Vector2d::Zero(), 1.0);
+      DrawSpot(&canvas, spot, Eigen::Vector2d::Zero(), 1.0, scale);
       located.push_back(&spot);
     } else {
       cv::putText(canvas, spot.laser + ": " + spot.problem,
-                  cv::Point(8, 18 + 16 * undetected_line++),
-                  cv::FONT_HERSHEY_SIMPLEX, 0.45, kColourProblem, 1,
+                  cv::Point(8 * scale, (18 + 16 * undetected_line++) * scale),
+                  cv::FONT_HERSHEY_SIMPLEX, 0.45 * scale, kColourProblem, scale,
                   cv::LINE_AA);
     }
   }
   if (located.empty()) return canvas;
 
-  // The strip of magnified crops, kCrop source pixels square each.
+  // The strip of magnified crops, kCrop source pixels square each, as
+  // large relative to the image at any size.
   constexpr int kCrop = 24;
-  constexpr int kZoom = 8;
-  constexpr int kTile = kCrop * kZoom;
-  const int per_row = std::max(1, canvas.cols / kTile);
+  const int zoom = 8 * scale;
+  const int tile_size = kCrop * zoom;
+  const int per_row = std::max(1, canvas.cols / tile_size);
   const int rows = (static_cast<int>(located.size()) + per_row - 1) / per_row;
-  cv::Mat out(canvas.rows + rows * kTile, std::max(canvas.cols, kTile), CV_8UC3,
-              cv::Scalar::all(0));
+  cv::Mat out(canvas.rows + rows * tile_size, std::max(canvas.cols, tile_size),
+              CV_8UC3, cv::Scalar::all(0));
   canvas.copyTo(out(cv::Rect(0, 0, canvas.cols, canvas.rows)));
   for (size_t i = 0; i < located.size(); ++i) {
     const DetectedSpot& spot = *located[i];
@@ -139,12 +149,13 @@ cv::Mat DrawSpotOverlay(const cv::Mat& image,
           crop(cv::Rect(have.x - x0, have.y - y0, have.width, have.height)));
     }
     cv::Mat tile;
-    cv::resize(crop, tile, cv::Size(kTile, kTile), 0, 0, cv::INTER_NEAREST);
-    DrawSpot(&tile, spot, Eigen::Vector2d(x0, y0), kZoom);
+    cv::resize(crop, tile, cv::Size(tile_size, tile_size), 0, 0,
+               cv::INTER_NEAREST);
+    DrawSpot(&tile, spot, Eigen::Vector2d(x0, y0), zoom, scale);
     const int slot = static_cast<int>(i);
-    tile.copyTo(
-        out(cv::Rect((slot % per_row) * kTile,
-                     canvas.rows + (slot / per_row) * kTile, kTile, kTile)));
+    tile.copyTo(out(cv::Rect((slot % per_row) * tile_size,
+                             canvas.rows + (slot / per_row) * tile_size,
+                             tile_size, tile_size)));
   }
   return out;
 }

@@ -13,8 +13,10 @@ namespace uw {
 // The image with each stable spot's merged 68 % and 95 % ellipses
 // (Mahalanobis radii 1.510 and 2.448), the iterations' centres faintly, and
 // unstable or undetected lasers marked with their reason; below it a strip
-// of 8x magnified crops around each spot, where sub-pixel ellipses are
-// legible.
+// of magnified crops around each spot, where sub-pixel ellipses are
+// legible. Marks, text and the crops' magnification (8x) grow with the
+// image beyond 1500 px wide (x2 at 2250 px, x4 at 5250: a 27 MP frame), so
+// that they stay visible when the whole frame is viewed or shrunk.
 cv::Mat DrawSpotOverlay(const cv::Mat& image,
                         const std::vector<DetectedSpot>& spots);
 

@@ -22,11 +22,11 @@
 #include "common/mesh/mesh.h"
 #include "common/util/csv.h"
 #include "common/util/error.h"
+#include "common/util/figure.h"
 #include "common/util/file.h"
 #include "common/util/html.h"
 #include "common/util/json_fields.h"
 #include "common/util/median.h"
-#include "common/util/plot.h"
 #include "report/survey_map.h"
 
 namespace uw {
@@ -52,10 +52,18 @@ std::string Note(const std::string& text) {
   return "<p class=\"note\">" + HtmlEscape(text) + "</p>\n";
 }
 
-std::string Figure(const std::string& src, const std::string& alt,
-                   const std::string& caption) {
-  return "<figure><img src=\"" + HtmlEscape(src) + "\" alt=\"" +
-         HtmlEscape(alt) + "\"><figcaption>" + caption +
+// An image with its caption; a figure drawn with matplotlib links its SVG
+// (for print) from its PNG.
+std::string HtmlFigure(const std::string& src, const std::string& alt,
+                       const std::string& caption, bool has_svg = false) {
+  std::string img =
+      "<img src=\"" + HtmlEscape(src) + "\" alt=\"" + HtmlEscape(alt) + "\">";
+  if (has_svg) {
+    img = "<a href=\"" +
+          HtmlEscape(fs::path(src).replace_extension(".svg").string()) + "\">" +
+          img + "</a>";
+  }
+  return "<figure>" + img + "<figcaption>" + caption +
          "</figcaption></figure>\n";
 }
 
@@ -86,6 +94,31 @@ class ReportFiles {
   }
   void Copy(const fs::path& source, const std::string& relative) {
     Add(relative, ReadFileToString(source));
+  }
+  // Copies a figure's PNG and, when it has one beside it, its SVG; returns
+  // whether it had.
+  bool CopyFigure(const fs::path& png, const std::string& relative) {
+    Copy(png, relative);
+    const fs::path svg = fs::path(png).replace_extension(".svg");
+    if (!fs::is_regular_file(svg)) return false;
+    Copy(svg, fs::path(relative).replace_extension(".svg").string());
+    return true;
+  }
+  // A figure to draw as `relative` (PNG) and its SVG by DrawFigures: one
+  // run of matplotlib for all of them.
+  void AddFigure(const std::string& relative, Figure figure) {
+    figure_names_.push_back(relative);
+    figures_.push_back(std::move(figure));
+  }
+  void DrawFigures() {
+    const std::vector<FigureFiles> drawn = uw::DrawFigures(figures_);
+    for (size_t i = 0; i < drawn.size(); ++i) {
+      Add(figure_names_[i], drawn[i].png);
+      Add(fs::path(figure_names_[i]).replace_extension(".svg").string(),
+          drawn[i].svg);
+    }
+    figures_.clear();
+    figure_names_.clear();
   }
   void Replace(const std::string& relative, std::string bytes) {
     const auto at = std::find(names_.begin(), names_.end(), relative);
@@ -118,6 +151,8 @@ class ReportFiles {
   fs::path dir_;
   std::vector<std::string> names_;
   std::vector<std::string> contents_;
+  std::vector<std::string> figure_names_;
+  std::vector<Figure> figures_;
 };
 
 // What the truth says about the model (a uwsim output folder).
@@ -372,7 +407,7 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
                             ? "Dense mesh from above, navigation and cameras"
                             : "Dense mesh from above and cameras (model units)";
     files.Png("survey_map.png", DrawSurveyMap(data, map_options).image);
-    map_html += Figure(
+    map_html += HtmlFigure(
         "survey_map.png", "survey map",
         "The dense mesh seen from above (hillshade, coloured by height), the "
         "model's camera centres coloured by dive" +
@@ -501,8 +536,9 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
          "lines mean enough iterations."}};
     for (const fs::path& plot : laser->plots) {
       const std::string name = plot.filename().string();
-      files.Copy(plot, "laser/" + name);
-      scale_html += Figure("laser/" + name, name, captions.at(name));
+      const bool has_svg = files.CopyFigure(plot, "laser/" + name);
+      scale_html +=
+          HtmlFigure("laser/" + name, name, captions.at(name), has_svg);
     }
     if (laser->overlays.empty()) {
       overlays_html += omit(
@@ -577,6 +613,7 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
           "navigation priors).");
     } else {
       std::vector<double> x, norm, x_mahalanobis, mahalanobis;
+      std::vector<std::string> names;
       std::vector<std::vector<std::string>> rows;
       std::string csv =
           "image,dive,error_x_m,error_y_m,error_z_m,"
@@ -584,6 +621,7 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
       for (size_t i = 0; i < ba->residuals.size(); ++i) {
         const BaReportSummary::Residual& r = ba->residuals[i];
         x.push_back(static_cast<double>(i));
+        names.push_back(r.name);
         norm.push_back(r.error_norm_m);
         if (r.mahalanobis) {
           x_mahalanobis.push_back(static_cast<double>(i));
@@ -599,34 +637,37 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
                (r.mahalanobis ? Fixed(*r.mahalanobis, 6) : "") + "\n";
       }
       files.Add("prior_residuals.csv", csv);
-      Plot norm_plot("Camera centre - navigation prior, per image",
-                     "image (index in the table)", "|e| (m)", 1000, 420);
-      norm_plot.Bars(x, norm, 0.7, Plot::Colour(0), "|e| per image");
+      Figure norm_plot("Camera centre \u2212 navigation prior, per image",
+                       "image", "|e| (m)", 10.0, 4.8);
+      norm_plot.ItemAxis(names);
+      norm_plot.Bars(x, norm, 0.7, Figure::Colour(0), "|e| per image");
       if (ba->prior_residual_rms_m) {
-        norm_plot.HorizontalLine(*ba->prior_residual_rms_m, Plot::Colour(3),
+        norm_plot.HorizontalLine(*ba->prior_residual_rms_m, Figure::Colour(3),
                                  "RMS");
       }
-      files.Png("prior_residuals.png", norm_plot.Render());
-      nav_html += Figure(
+      files.AddFigure("prior_residuals.png", norm_plot);
+      nav_html += HtmlFigure(
           "prior_residuals.png", "prior residuals",
           "Distance between each camera centre of the fused model and its "
           "navigation prior (plus its dive's offset). It is the navigation's "
           "error as the images see it: large bars are fixes the images "
-          "overruled.");
+          "overruled.",
+          true);
       if (!mahalanobis.empty()) {
-        Plot m_plot(
+        Figure m_plot(
             "Prior residual in units of the navigation's stated "
             "uncertainty",
-            "image (index in the table)", "Mahalanobis distance", 1000, 420);
-        m_plot.Bars(x_mahalanobis, mahalanobis, 0.7, Plot::Colour(2),
+            "image", "Mahalanobis distance", 10.0, 4.8);
+        m_plot.ItemAxis(names);
+        m_plot.Bars(x_mahalanobis, mahalanobis, 0.7, Figure::Colour(2),
                     "Mahalanobis distance");
-        m_plot.HorizontalLine(kMahalanobis95, Plot::Colour(3),
+        m_plot.HorizontalLine(kMahalanobis95, Figure::Colour(3),
                               "95 % of a correct covariance");
-        files.Png("prior_mahalanobis.png", m_plot.Render());
+        files.AddFigure("prior_mahalanobis.png", m_plot);
         size_t above = 0;
         for (const double m : mahalanobis) above += m > kMahalanobis95;
         nav_json["num_mahalanobis_above_95"] = above;
-        nav_html += Figure(
+        nav_html += HtmlFigure(
             "prior_mahalanobis.png", "prior Mahalanobis distances",
             "The same residuals divided by the navigation's stated covariance "
             "(nav.csv's std columns). With a right covariance, 95 % of the "
@@ -634,7 +675,8 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
                 std::to_string(above) + " of " +
                 std::to_string(mahalanobis.size()) +
                 " are above it here); many more above means the navigation is "
-                "worse than it says.");
+                "worse than it says.",
+            true);
       }
       nav_html += "<details><summary>Per image (" +
                   std::to_string(rows.size()) +
@@ -776,8 +818,9 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
     files.Copy(c.cameras.Path(), "uncertainty/cameras.csv");
     files.Copy(c.dir / "covariance.json", "uncertainty/covariance.json");
     if (c.map) {
-      files.Copy(*c.map, "uncertainty/uncertainty_map.png");
-      uncertainty_html += Figure(
+      const bool has_svg =
+          files.CopyFigure(*c.map, "uncertainty/uncertainty_map.png");
+      uncertainty_html += HtmlFigure(
           "uncertainty/uncertainty_map.png", "uncertainty map",
           "The points in plan view (model x, y) in three classes of their "
           "largest-axis sigma against the median (grey: at most the median; "
@@ -785,7 +828,8 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
           "points gather where few images see them (the survey's edges) or "
           "their baselines are short. Coverage gaps, places inside the "
           "survey where the model has no point, are marked in magenta "
-          "(docs/covariance.md, \"Map\").");
+          "(docs/covariance.md, \"Map\").",
+          has_svg);
     }
     report["uncertainty"] = uncertainty;
   } else {
@@ -890,12 +934,12 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
     for (const double d : millimetres) {
       if (d <= p99) shown.push_back(d);
     }
-    Plot histogram("Dense mesh vertices: distance to the true surface",
-                   "distance (mm)", "vertices", 1000, 420);
-    histogram.Histogram(shown, 50, Plot::Colour(0));
-    histogram.VerticalLine(median, Plot::Colour(3), "median");
-    files.Png("dense_distance_histogram.png", histogram.Render());
-    dense_html += Figure(
+    Figure histogram("Dense mesh vertices: distance to the true surface",
+                     "distance (mm)", "vertices", 10.0, 4.8);
+    histogram.Histogram(shown, 50, Figure::Colour(0));
+    histogram.VerticalLine(median, Figure::Colour(3), "median");
+    files.AddFigure("dense_distance_histogram.png", histogram);
+    dense_html += HtmlFigure(
         "dense_distance_histogram.png", "dense mesh distance histogram",
         "Distance from " + std::to_string(millimetres.size()) +
             " mesh vertices to the true surface, after the camera-centre "
@@ -905,7 +949,8 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
             std::to_string(millimetres.size() - shown.size()) +
             " beyond the 99th percentile, " + Fixed(p99, 2) +
             " mm, are not drawn). The table's figures use area-uniform "
-            "samples instead of vertices.");
+            "samples instead of vertices.",
+        true);
   }
   if (!mesh && !dense) {
     dense_html += omit(
@@ -1071,6 +1116,7 @@ SurveyReportResult WriteSurveyReport(const SurveyReportInputs& inputs,
 
   // ----------------------------------------------------------------- files
   // Listed now, written last: report.json lists every file.
+  files.DrawFigures();
   files.Add("report.json", "");
   std::string files_html = "<h2 id=\"files\">Files</h2>\n<ul>\n";
   for (const std::string& name : files.Names()) {

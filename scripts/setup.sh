@@ -41,6 +41,8 @@ packages=(
   libapriltag-dev
   # headless browser: the survey report's render test (tests/report_render_test.cc)
   chromium
+  # the reports' figures (scripts/uwplot.py, run by /usr/bin/python3)
+  python3-matplotlib
 )
 
 missing=()

@@ -53,7 +53,7 @@ TEST(CovarianceEstimator, BundleAdjusterAndEstimatorAgree) {
   const fs::path folder = dir / "ba" / "covariance";
   for (const char* name :
        {"covariance.bin", "covariance.json", "cameras.csv", "points.ply",
-        "uncertainty_map.png", "samples.bin"}) {
+        "uncertainty_map.png", "uncertainty_map.svg", "samples.bin"}) {
     EXPECT_TRUE(fs::is_regular_file(folder / name)) << name;
   }
   EXPECT_NE(adjuster.output.find("samples.bin"), std::string::npos);

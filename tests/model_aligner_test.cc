@@ -10,8 +10,10 @@
 #include <map>
 #include <regex>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "colmap_plugins/nav/geodesy.h"
 #include "colmap_plugins/scene/model_io.h"
 #include "common/util/file.h"
 #include "common/util/subprocess.h"
@@ -252,7 +254,9 @@ TEST(ModelAligner, BadReferencesGiveClearErrorsAndWriteNothing) {
                             "--database_path and --nav (got 2)");
   ExpectFailsWritingNothing(InOut(kSparseDir, output) + " --ref_images_path " +
                                 Quoted(kRefImages) + " --ref_is_gps 1" + json,
-                            output, "--ref_is_gps 1");
+                            output,
+                            "--ref_is_gps 1 aligns into local east-north-up "
+                            "metres: give --alignment_type enu");
   {
     std::ofstream out(dir / "broken.txt");
     out << "000.png 1 2 3\n001.png 1 2\n";
@@ -267,6 +271,70 @@ TEST(ModelAligner, BadReferencesGiveClearErrorsAndWriteNothing) {
   EXPECT_EQ(same.exit_code, 1);
   EXPECT_NE(same.output.find("is the input folder"), std::string::npos)
       << same.output;
+}
+
+// Issue 17: COLMAP's GPS references (--ref_is_gps 1, 'name lat lon alt')
+// are aligned to in local east-north-up metres at --origin: the model lands
+// where the metric references they were made from put it, to < 1 mm.
+TEST(ModelAligner, GpsReferencesAlignInLocalEastNorthUp) {
+  const fs::path dir = FreshTestDir("uw_model_aligner_gps");
+  const LocalEnu local({-33.875, 151.25, 10.0});
+  {
+    std::ifstream in(kRefImages);
+    std::ofstream out(dir / "gps.txt");
+    std::string name;
+    double x, y, z;
+    while (in >> name >> x >> y >> z) {
+      const Eigen::Vector3d geodetic = local.ToGeodetic({x, y, z});
+      out << fmt::format("{} {:.12f} {:.12f} {:.6f}\n", name, geodetic.x(),
+                         geodetic.y(), geodetic.z());
+    }
+  }
+  const auto metric =
+      Uwcolmap(InOut(kSparseDir, dir / "metric") + " --ref_images_path " +
+               Quoted(kRefImages) + " --robust_alignment 0");
+  ASSERT_EQ(metric.exit_code, 0) << metric.output;
+  const std::string gps_flags = " --ref_images_path " +
+                                Quoted(dir / "gps.txt") +
+                                " --ref_is_gps 1 --robust_alignment 0";
+  const auto gps = Uwcolmap(
+      InOut(kSparseDir, dir / "gps") + gps_flags +
+      " --alignment_type enu --origin -33.875,151.25,10 --transform_path " +
+      Quoted(dir / "sim3.json"));
+  ASSERT_EQ(gps.exit_code, 0) << gps.output;
+  const Reconstruction metric_model = ReadModel(dir / "metric");
+  const auto metric_images = ByName(metric_model);
+  double max_centre = 0.0;
+  const Reconstruction gps_model = ReadModel(dir / "gps");
+  for (const Image& image : gps_model.Images()) {
+    max_centre =
+        std::max(max_centre, (image.ProjectionCenter() -
+                              metric_images.at(image.name)->ProjectionCenter())
+                                 .norm());
+  }
+  std::printf("[ gps ] largest camera-centre difference %.2e m\n", max_centre);
+  EXPECT_LT(max_centre, 1e-3);
+  const nlohmann::json sim3 =
+      nlohmann::json::parse(ReadFileToString(dir / "sim3.json"));
+  EXPECT_NE(sim3.at("world_frame")
+                .get<std::string>()
+                .find("local east-north-up (m) at -33.875"),
+            std::string::npos)
+      << sim3.at("world_frame");
+
+  // Without --origin: the first reference rounded, printed for reuse.
+  const auto automatic = Uwcolmap(InOut(kSparseDir, dir / "automatic") +
+                                  gps_flags + " --alignment_type enu");
+  ASSERT_EQ(automatic.exit_code, 0) << automatic.output;
+  EXPECT_NE(automatic.output.find("automatic, its first fix rounded"),
+            std::string::npos)
+      << automatic.output;
+  // colmap would align into ECEF without enu: the frame is asked for.
+  const auto custom = Uwcolmap(InOut(kSparseDir, dir / "custom") + gps_flags);
+  EXPECT_EQ(custom.exit_code, 1);
+  EXPECT_NE(custom.output.find("give --alignment_type enu"), std::string::npos)
+      << custom.output;
+  EXPECT_FALSE(fs::exists(dir / "custom"));
 }
 
 // Issue 17: gross mistakes used to align with exit 0 and normal-looking

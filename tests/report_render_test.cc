@@ -4,6 +4,7 @@
 // missing (issue 7, the report).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <regex>
@@ -16,6 +17,7 @@
 #include "common/util/html.h"
 #include "common/util/subprocess.h"
 #include "tests/support/process.h"
+#include "tests/support/svg_ticks.h"
 
 namespace uw {
 namespace {
@@ -100,6 +102,39 @@ TEST(ReportRender, DemoReportRendersWithEveryImage) {
   EXPECT_EQ(html.find("http://"), std::string::npos);
   EXPECT_EQ(html.find("https://"), std::string::npos);
   EXPECT_TRUE(fs::is_regular_file(report / "report.json"));
+
+  // Acceptance 5 (issue 17): every figure has an SVG beside its PNG, and
+  // every SVG's axes can be read: 1-2-5 steps or decades without offsets,
+  // per-image axes by the images' names.
+  std::vector<std::string> with_svg;
+  for (const auto& entry : fs::recursive_directory_iterator(report)) {
+    if (entry.path().extension() != ".svg") continue;
+    const std::string name =
+        fs::relative(entry.path(), report).replace_extension().string();
+    with_svg.push_back(name);
+    const std::string svg = ReadFileToString(entry.path());
+    EXPECT_EQ(TickProblem(SvgTickLabels(svg, 'y')), "") << name;
+    const std::vector<std::string> x = SvgTickLabels(svg, 'x');
+    const bool images =
+        !x.empty() && std::all_of(x.begin(), x.end(), [](const std::string& l) {
+          return IsImageFile(l);
+        });
+    if (!images) {
+      EXPECT_EQ(TickProblem(x), "") << name;
+    }
+    std::printf("[ figure ] %s: x %s ... %s, y %zu ticks\n", name.c_str(),
+                x.empty() ? "-" : x.front().c_str(),
+                x.empty() ? "-" : x.back().c_str(),
+                SvgTickLabels(svg, 'y').size());
+  }
+  for (const char* figure :
+       {"prior_residuals", "prior_mahalanobis", "dense_distance_histogram",
+        "laser/scales", "laser/histogram", "laser/convergence",
+        "uncertainty/uncertainty_map"}) {
+    EXPECT_NE(std::find(with_svg.begin(), with_svg.end(), figure),
+              with_svg.end())
+        << figure;
+  }
 
   // In the browser: a screenshot of the page's size that is not blank.
   const fs::path shot = report / "shot.png";

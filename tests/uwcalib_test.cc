@@ -22,6 +22,7 @@
 #include "laserscale/spots_io.h"
 #include "sim/laser.h"
 #include "tests/support/process.h"
+#include "tests/support/svg_ticks.h"
 
 namespace uw {
 namespace {
@@ -71,8 +72,20 @@ TEST(Uwcalib, DetectAndCalibrateTheLeftCamera) {
       nlohmann::json::parse(std::ifstream(dir / "cal" / "calibration.json"));
   EXPECT_EQ(report["cameras"][0]["images"].size(), 13u);
   EXPECT_EQ(report["lens_model"], "LENSMODEL_OPENCV5");
-  for (const char* plot : {"residuals.png", "residuals_per_image.png"}) {
-    EXPECT_FALSE(cv::imread((dir / "cal" / plot).string()).empty()) << plot;
+  for (const char* plot : {"residuals", "residuals_per_image"}) {
+    const fs::path png = dir / "cal" / (std::string(plot) + ".png");
+    EXPECT_FALSE(cv::imread(png.string()).empty()) << plot;
+    const std::string svg =
+        ReadFileToString(fs::path(png).replace_extension(".svg"));
+    EXPECT_EQ(TickProblem(SvgTickLabels(svg, 'y')), "") << plot;
+    if (std::string(plot) == "residuals") {
+      EXPECT_EQ(TickProblem(SvgTickLabels(svg, 'x')), "");
+    } else {  // the images by name
+      const std::vector<std::string> names = SvgTickLabels(svg, 'x');
+      ASSERT_EQ(names.size(), 13u);
+      EXPECT_EQ(names[0],
+                report["cameras"][0]["images"][0]["image"].get<std::string>());
+    }
   }
 
   // The camera into a COLMAP model that stock colmap reads: its text has

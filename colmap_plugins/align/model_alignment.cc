@@ -11,6 +11,7 @@
 
 #include "colmap_plugins/align/track_metrics.h"
 #include "colmap_plugins/nav/camera_prior.h"
+#include "colmap_plugins/nav/geographic_positions.h"
 #include "colmap_plugins/nav/image_times.h"
 #include "colmap_plugins/nav/nav_csv.h"
 #include "common/util/error.h"
@@ -37,6 +38,12 @@ void ModelAlignmentOptions::Check() const {
         "give exactly one of --ref_images_path, --database_path "
         "and --nav (got ",
         num_sources, ")");
+  }
+  if (ref_is_gps && ref_images_path.empty()) {
+    throw ErrorAt(
+        "--ref_is_gps 1 reads --ref_images_path as 'image_name lat lon alt'; "
+        "a database's WGS84 priors and a geographic --nav are recognised "
+        "without it");
   }
   if (associate == ReferenceAssociation::kClosestPoint && !has_nav) {
     throw ErrorAt("--associate closest_point needs --nav");
@@ -227,19 +234,39 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
   if (options.associate == ReferenceAssociation::kClosestPoint) {
     alignment = AlignByClosestPoints(model, options.nav, options.similarity);
   } else if (!options.ref_images_path.empty()) {
+    std::vector<ReferencePosition> references =
+        ReadReferencePositions(options.ref_images_path);
+    NavLogFrame frame;
+    if (options.ref_is_gps) {
+      std::vector<Eigen::Vector3d> positions;
+      std::vector<std::string> names;
+      for (const ReferencePosition& reference : references) {
+        positions.push_back(reference.position);
+        names.push_back(reference.image_name);
+      }
+      const std::vector<Eigen::Vector3d> local =
+          GeographicToLocal(positions, names, options.nav.log.origin,
+                            options.ref_images_path + " (lat lon alt)", &frame);
+      for (size_t i = 0; i < references.size(); ++i) {
+        references[i].position = local[i];
+      }
+    }
     alignment = AlignByName(
-        model,
-        WithPositionSigma(ReadReferencePositions(options.ref_images_path),
-                          options.position_sigma_m),
+        model, WithPositionSigma(references, options.position_sigma_m),
         options.ref_images_path, options.similarity);
+    if (frame.origin) alignment.world_frame = WorldFrameText(frame);
   } else if (!options.database_path.empty()) {
     const Database database =
         Database::Open(options.database_path, Database::Mode::kReadOnly);
+    NavLogFrame frame;
     alignment = AlignByName(
         model,
-        WithPositionSigma(ReferencePositionsFromDatabase(database),
-                          options.position_sigma_m),
+        WithPositionSigma(
+            ReferencePositionsFromDatabase(database, options.nav.log.origin,
+                                           &frame, &log_warnings),
+            options.position_sigma_m),
         options.database_path + " (pose priors)", options.similarity);
+    if (frame.origin) alignment.world_frame = WorldFrameText(frame);
   } else {
     const NavigationReferenceSet navigation =
         NavigationReferences(options.nav, model);

@@ -33,8 +33,12 @@ ReferenceAssociation ReferenceAssociationFromName(const std::string& name);
 struct ModelAlignmentOptions {
   // Exactly one source of references.
   std::string ref_images_path;  // COLMAP's ref_images.txt
-  std::string database_path;    // a database's pose priors
-  PosePriorImportOptions nav;   // a navigation log (nav_path), or none
+  // Its lines are 'image_name lat lon alt' (deg, m; COLMAP's --ref_is_gps
+  // 1), put into local east-north-up metres at nav.log.origin (--origin)
+  // or the automatic origin.
+  bool ref_is_gps = false;
+  std::string database_path;   // a database's pose priors
+  PosePriorImportOptions nav;  // a navigation log (nav_path), or none
   ReferenceAssociation associate = ReferenceAssociation::kName;
   // Robust (RANSAC + Huber) with an automatic threshold, with scale.
   SimilarityOptions similarity;
@@ -48,8 +52,9 @@ struct ModelAlignmentOptions {
   // --accept_implausible).
   AlignmentPlausibilityOptions plausibility;
 
-  // One source, closest points on the navigation only, at least 3 common
-  // images, a finite position sigma >= 0, the similarity's own rules.
+  // One source, closest points on the navigation only, ref_is_gps with
+  // ref_images_path only, at least 3 common images, a finite position
+  // sigma >= 0, the similarity's own rules.
   void Check() const;
 };
 
@@ -67,8 +72,9 @@ struct ModelAlignment {
   int iterations = 0;                      // closest_point only
   bool converged = true;
   AlignmentPlausibility plausibility;
-  // The frame of the references from a navigation log (WorldFrameText);
-  // empty for ref_images.txt and database priors, whose frame is theirs.
+  // The frame of the references from a navigation log or geographic
+  // references (WorldFrameText); empty for metric ref_images.txt and
+  // database priors, whose frame is theirs.
   std::string world_frame;
   // What the user must know about the result (centres on one line).
   std::vector<std::string> warnings;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "colmap_plugins/nav/geographic_positions.h"
 #include "common/util/error.h"
 #include "common/util/file.h"
 
@@ -69,21 +70,17 @@ std::vector<ReferencePosition> ReadReferencePositions(
 }
 
 std::vector<ReferencePosition> ReferencePositionsFromDatabase(
-    const Database& database) {
+    const Database& database, const std::optional<GeoOrigin>& origin,
+    NavLogFrame* frame, std::vector<std::string>* warnings) {
   std::map<uint32_t, std::string> names;
   for (const DatabaseImage& image : database.ReadAllImages()) {
     names[image.image_id] = image.name;
   }
   std::vector<ReferencePosition> references;
-  for (const PosePrior& prior : database.ReadAllPosePriors()) {
+  for (const PosePrior& prior :
+       WithLocalPositions(database.ReadAllPosePriors(), origin,
+                          database.Path().string(), frame, warnings)) {
     if (!prior.HasPosition()) continue;
-    if (prior.coordinate_system == PosePriorCoordinateSystem::kWGS84) {
-      throw ErrorAt(database.Path().string(), ": the prior of image ",
-                    prior.image_id,
-                    " is WGS84 (latitude, longitude, altitude); uwcolmap "
-                    "aligns to metric priors only: convert them, or use "
-                    "`colmap model_aligner --ref_is_gps 1`");
-    }
     ReferencePosition reference;
     reference.image_name = names.at(prior.image_id);
     reference.position = prior.position;

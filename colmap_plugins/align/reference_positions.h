@@ -12,6 +12,8 @@
 
 #include <Eigen/Core>
 
+#include "colmap_plugins/nav/geodesy.h"
+#include "colmap_plugins/nav/nav_csv.h"
 #include "colmap_plugins/scene/database.h"
 #include "colmap_plugins/scene/model.h"
 
@@ -32,11 +34,13 @@ std::vector<ReferencePosition> ReadReferencePositions(
     const std::filesystem::path& path);
 
 // The position priors of a database (in any COLMAP schema), with their
-// covariances where the schema stores them and they are finite. WGS84 priors
-// are refused (uw::Error): they need a conversion to a metric frame first
-// (`colmap model_aligner --ref_is_gps 1`).
+// covariances where the schema stores them and they are finite. WGS84
+// priors are put into the local east-north-up frame at `origin` (or the
+// automatic one), which `frame` receives, without their covariances
+// (geographic_positions.h: `warnings` says so).
 std::vector<ReferencePosition> ReferencePositionsFromDatabase(
-    const Database& database);
+    const Database& database, const std::optional<GeoOrigin>& origin,
+    NavLogFrame* frame, std::vector<std::string>* warnings);
 
 // The model's images that have a reference position, in name order.
 struct ReferenceMatch {

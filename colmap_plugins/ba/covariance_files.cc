@@ -7,14 +7,13 @@
 
 #include <fmt/format.h>
 #include <Eigen/Eigenvalues>
-#include <opencv2/imgcodecs.hpp>
 
 #include "colmap_plugins/ba/model_file.h"
 #include "common/util/csv.h"
 #include "common/util/error.h"
+#include "common/util/figure.h"
 #include "common/util/file.h"
 #include "common/util/json_fields.h"
-#include "common/util/plot.h"
 
 namespace uw {
 namespace {
@@ -110,9 +109,12 @@ void WritePointsPly(const BundleCovariance& covariance,
 }
 
 // Plan view: points in three classes of their largest-axis sigma against
-// the median, coverage gaps, cameras on top.
-std::string RenderMap(const BundleCovariance& covariance,
-                      const Reconstruction& model) {
+// the median, coverage gaps, cameras on top. Only a model the navigation
+// priors hold is in metres; any other is in its own units.
+Figure MapFigure(const BundleCovariance& covariance,
+                 const Reconstruction& model) {
+  const bool metric = covariance.gauge == CovarianceGauge::kPriors;
+  const std::string unit = metric ? "m" : "model units";
   std::vector<double> sigmas;
   for (const PointCovariance& point : covariance.points) {
     sigmas.push_back(LargestAxisSigma(point.xyz));
@@ -127,26 +129,25 @@ std::string RenderMap(const BundleCovariance& covariance,
     x[k].push_back(xyz.x());
     y[k].push_back(xyz.y());
   }
-  Plot plot("Point uncertainty, plan view (sigma of the largest axis)", "x (m)",
-            "y (m)", 900, 700);
+  Figure figure("Point uncertainty, plan view (\u03c3 of the largest axis)",
+                "x (" + unit + ")", "y (" + unit + ")", 9.0, 7.0);
+  figure.EqualAspect();
   const std::string labels[3] = {
-      fmt::format("<= median ({:.3g} mm)", 1000.0 * median),
-      "median .. 3x median", "> 3x median (weak)"};
-  const cv::Scalar colours[3] = {cv::Scalar(160, 160, 160),
-                                 cv::Scalar(0, 165, 255),
-                                 cv::Scalar(0, 0, 220)};
+      metric ? fmt::format("\u2264 median ({:.3g} mm)", 1000.0 * median)
+             : fmt::format("\u2264 median ({:.3g} model units)", median),
+      "median .. 3\u00d7 median", "> 3\u00d7 median (weak)"};
+  const char* const colours[3] = {"#a0a0a0", "#ffa500", "#dc0000"};
   for (int k = 0; k < 3; ++k) {
-    if (!x[k].empty()) plot.Points(x[k], y[k], colours[k], labels[k]);
+    if (!x[k].empty()) figure.Points(x[k], y[k], colours[k], labels[k]);
   }
-  const CoverageGaps& gaps = covariance.coverage_gaps;
   std::vector<double> gx;
   std::vector<double> gy;
-  for (const Eigen::Vector2d& centre : gaps.cell_centres) {
+  for (const Eigen::Vector2d& centre : covariance.coverage_gaps.cell_centres) {
     gx.push_back(centre.x());
     gy.push_back(centre.y());
   }
   if (!gx.empty()) {
-    plot.Points(gx, gy, cv::Scalar(200, 0, 200), "coverage gap (no points)");
+    figure.Points(gx, gy, "#c800c8", "coverage gap (no points)");
   }
   std::vector<double> sx;
   std::vector<double> sy;
@@ -156,8 +157,7 @@ std::string RenderMap(const BundleCovariance& covariance,
     sy.push_back(centre.y());
   }
   if (!sx.empty()) {
-    plot.Points(sx, sy, cv::Scalar(200, 200, 0),
-                "short baselines (seen from one place)");
+    figure.Points(sx, sy, "#00c8c8", "short baselines (seen from one place)");
   }
   std::vector<double> cx;
   std::vector<double> cy;
@@ -167,12 +167,8 @@ std::string RenderMap(const BundleCovariance& covariance,
     cx.push_back(c.x());
     cy.push_back(c.y());
   }
-  plot.Points(cx, cy, cv::Scalar(0, 0, 0), "cameras");
-  std::vector<unsigned char> png;
-  if (!cv::imencode(".png", plot.Render(), png)) {
-    throw ErrorAt("could not encode the uncertainty map");
-  }
-  return std::string(png.begin(), png.end());
+  figure.Points(cx, cy, "black", "cameras");
+  return figure;
 }
 
 }  // namespace
@@ -320,7 +316,7 @@ void WriteCovarianceFiles(const BundleCovariance& covariance,
                           const Reconstruction& model,
                           const std::filesystem::path& folder) {
   const std::string json = CovarianceSummaryJson(covariance, model).dump(2);
-  const std::string map = RenderMap(covariance, model);
+  const FigureFiles map = DrawFigures({MapFigure(covariance, model)}).at(0);
   fs::create_directories(folder);
   std::vector<PendingFile> files = {
       {folder / "covariance.bin",
@@ -331,7 +327,10 @@ void WriteCovarianceFiles(const BundleCovariance& covariance,
        [&](std::ostream& out) { WriteCamerasCsv(covariance, model, out); }},
       {folder / "points.ply",
        [&](std::ostream& out) { WritePointsPly(covariance, model, out); }},
-      {folder / "uncertainty_map.png", [&](std::ostream& out) { out << map; }}};
+      {folder / "uncertainty_map.png",
+       [&](std::ostream& out) { out << map.png; }},
+      {folder / "uncertainty_map.svg",
+       [&](std::ostream& out) { out << map.svg; }}};
   if (covariance.samples.NumSamples() > 0) {
     files.push_back({folder / "samples.bin", [&](std::ostream& out) {
                        WriteCovarianceSamples(covariance.samples, model, out);

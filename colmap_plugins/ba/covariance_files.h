@@ -9,7 +9,9 @@
 //                    all (m), of the rotation (deg);
 //   points.ply       the model's points with their uncertainty measures as
 //                    vertex properties;
-//   uncertainty_map.png  plan view of the points coloured by sigma.
+//   uncertainty_map.png, .svg  plan view of the points coloured by sigma,
+//                    in metres when the navigation priors fix the gauge,
+//                    else in model units.
 #pragma once
 
 #include <filesystem>

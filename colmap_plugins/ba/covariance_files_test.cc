@@ -10,6 +10,7 @@
 #include "common/util/error_testing.h"
 #include "common/util/file.h"
 #include "tests/support/process.h"
+#include "tests/support/svg_ticks.h"
 
 namespace uw {
 namespace {
@@ -40,10 +41,15 @@ class CovarianceFilesTest : public ::testing::Test {
 
 TEST_F(CovarianceFilesTest, WritesTheFiveFilesAndReadsTheSidecarBack) {
   WriteCovarianceFiles(covariance_, model_, folder_);
-  for (const char* name : {"covariance.bin", "covariance.json", "cameras.csv",
-                           "points.ply", "uncertainty_map.png"}) {
+  for (const char* name :
+       {"covariance.bin", "covariance.json", "cameras.csv", "points.ply",
+        "uncertainty_map.png", "uncertainty_map.svg"}) {
     EXPECT_TRUE(fs::is_regular_file(folder_ / name)) << name;
   }
+  const std::string map = ReadFileToString(folder_ / "uncertainty_map.svg");
+  EXPECT_NE(map.find(">x (m)</text>"), std::string::npos);
+  EXPECT_EQ(TickProblem(SvgTickLabels(map, 'x')), "");
+  EXPECT_EQ(TickProblem(SvgTickLabels(map, 'y')), "");
   const std::string csv = ReadFileToString(folder_ / "cameras.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'),
             static_cast<long>(model_.Images().size()) + 1);
@@ -59,6 +65,18 @@ TEST_F(CovarianceFilesTest, WritesTheFiveFilesAndReadsTheSidecarBack) {
             covariance_.images[3].rotation_center);
   EXPECT_EQ(back.points[9].xyz, covariance_.points[9].xyz);
   EXPECT_EQ(back.pixel_sigma_px, covariance_.pixel_sigma_px);
+}
+
+// A model no navigation priors hold is in its own units: its map says so
+// instead of metres.
+TEST_F(CovarianceFilesTest, TheMapOfAModelWithoutPriorsIsNotInMetres) {
+  BundleCovariance free = covariance_;
+  free.gauge = CovarianceGauge::kFreeNetwork;
+  WriteCovarianceFiles(free, model_, folder_);
+  const std::string map = ReadFileToString(folder_ / "uncertainty_map.svg");
+  EXPECT_NE(map.find(">x (model units)</text>"), std::string::npos);
+  EXPECT_EQ(map.find("(m)"), std::string::npos);
+  EXPECT_EQ(map.find(" mm)"), std::string::npos);
 }
 
 TEST_F(CovarianceFilesTest, ASidecarOfAnotherModelIsRefused) {

@@ -7,12 +7,10 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "common/util/error.h"
+#include "common/util/figure.h"
 #include "common/util/file.h"
-#include "common/util/plot.h"
 
 namespace uw {
 
@@ -247,72 +245,18 @@ std::string LCurveJson(const LCurve& curve) {
   return json.dump(2) + "\n";
 }
 
-void WriteLCurvePlot(const LCurve& curve, const std::filesystem::path& path) {
-  constexpr int kWidth = 800;
-  constexpr int kPlotHeight = 520;
-  constexpr int kCurvatureHeight = 220;
-  constexpr int kMargin = 70;
-  cv::Mat image(kPlotHeight + kCurvatureHeight, kWidth, CV_8UC3,
-                cv::Scalar(255, 255, 255));
-  std::vector<double> x;
-  std::vector<double> y;
-  std::vector<double> s;
-  std::vector<double> k;
+void WriteLCurveFigures(const LCurve& curve,
+                        const std::filesystem::path& folder) {
+  std::vector<double> rho, eta, lambda, curvature;
   for (const LCurvePoint& point : curve.points) {
-    x.push_back(std::log10(point.reprojection_ms_px2));
-    y.push_back(std::log10(point.navigation_ms_m2));
-    s.push_back(std::log10(point.weight_px_per_m));
-    if (point.curvature) k.push_back(*point.curvature);
-  }
-  const auto range = [](const std::vector<double>& v) {
-    double lo = *std::min_element(v.begin(), v.end());
-    double hi = *std::max_element(v.begin(), v.end());
-    if (hi - lo < 1e-12) {
-      lo -= 0.5;
-      hi += 0.5;
+    rho.push_back(point.reprojection_ms_px2);
+    eta.push_back(point.navigation_ms_m2);
+    if (point.curvature) {
+      lambda.push_back(point.weight_px_per_m);
+      curvature.push_back(*point.curvature);
     }
-    return std::make_pair(lo, hi);
-  };
-  const auto [x_lo, x_hi] = range(x);
-  const auto [y_lo, y_hi] = range(y);
-  const auto [s_lo, s_hi] = range(s);
-  const auto [k_lo, k_hi] = range(k.empty() ? std::vector<double>{0.0} : k);
-  const auto to_plot = [&](double px, double py) {
-    return cv::Point(kMargin + static_cast<int>((px - x_lo) / (x_hi - x_lo) *
-                                                (kWidth - 2 * kMargin)),
-                     kPlotHeight - kMargin -
-                         static_cast<int>((py - y_lo) / (y_hi - y_lo) *
-                                          (kPlotHeight - 2 * kMargin)));
-  };
-  const auto to_curvature = [&](double ps, double pk) {
-    return cv::Point(kMargin + static_cast<int>((ps - s_lo) / (s_hi - s_lo) *
-                                                (kWidth - 2 * kMargin)),
-                     kPlotHeight + kCurvatureHeight - 30 -
-                         static_cast<int>((pk - k_lo) / (k_hi - k_lo) *
-                                          (kCurvatureHeight - 60)));
-  };
-  const cv::Scalar black(0, 0, 0);
-  const cv::Scalar blue(180, 90, 20);
-  const cv::Scalar red(30, 30, 220);
-  const cv::Scalar green(40, 150, 40);
-  const auto text = [&](const std::string& label, cv::Point at) {
-    cv::putText(image, label, at, cv::FONT_HERSHEY_SIMPLEX, 0.45, black, 1,
-                cv::LINE_AA);
-  };
-  cv::rectangle(image, {kMargin, kMargin},
-                {kWidth - kMargin, kPlotHeight - kMargin}, black);
-  for (size_t i = 0; i + 1 < x.size(); ++i) {
-    cv::line(image, to_plot(x[i], y[i]), to_plot(x[i + 1], y[i + 1]), blue, 2,
-             cv::LINE_AA);
   }
-  for (size_t i = 0; i < x.size(); ++i) {
-    cv::circle(image, to_plot(x[i], y[i]), 3, blue, cv::FILLED, cv::LINE_AA);
-  }
-  if (curve.corner_index) {
-    cv::circle(image, to_plot(x[*curve.corner_index], y[*curve.corner_index]),
-               8, red, 2, cv::LINE_AA);
-  }
-  std::string title = "L-curve, lambda [px/m]: corner ";
+  std::string title = "L-curve, \u03bb (px/m): corner ";
   title += curve.corner_weight_px_per_m
                ? fmt::format("{:.4g}", *curve.corner_weight_px_per_m)
                : "none";
@@ -322,36 +266,34 @@ void WriteLCurvePlot(const LCurve& curve, const std::filesystem::path& path) {
   if (curve.noise_weight_px_per_m) {
     title += fmt::format(", noise levels {:.4g}", *curve.noise_weight_px_per_m);
   }
-  text(title, {kMargin, 40});
-  text(fmt::format("log10 reprojection MS [px^2]  ({:.3g} .. {:.3g})", x_lo,
-                   x_hi),
-       {kMargin, kPlotHeight - kMargin + 25});
-  text(fmt::format("log10 navigation MS [m^2]  ({:.3g} .. {:.3g})", y_lo, y_hi),
-       {kMargin, kMargin - 10});
-  if (!k.empty()) {
-    std::vector<cv::Point> line;
-    for (const LCurvePoint& point : curve.points) {
-      if (point.curvature) {
-        line.push_back(
-            to_curvature(std::log10(point.weight_px_per_m), *point.curvature));
-      }
-    }
-    cv::polylines(image, line, false, blue, 2, cv::LINE_AA);
-    if (curve.corner_weight_px_per_m) {
-      const double at = std::log10(*curve.corner_weight_px_per_m);
-      cv::line(image, to_curvature(at, k_lo), to_curvature(at, k_hi), red, 1,
-               cv::LINE_AA);
-    }
-    if (curve.noise_weight_px_per_m) {
-      const double at = std::log10(*curve.noise_weight_px_per_m);
-      cv::line(image, to_curvature(at, k_lo), to_curvature(at, k_hi), green, 1,
-               cv::LINE_AA);
-    }
-    text(fmt::format("curvature vs log10 lambda [px/m] ({:.3g} .. {:.3g})",
-                     s_lo, s_hi),
-         {kMargin, kPlotHeight + 15});
+  Figure l_curve(title, "reprojection mean square \u03c1 (px\u00b2)",
+                 "navigation mean square \u03b7 (m\u00b2)", 8.0, 6.0);
+  l_curve.LogX();
+  l_curve.LogY();
+  l_curve.Line(rho, eta, Figure::Colour(0), "one \u03bb per point");
+  l_curve.Points(rho, eta, Figure::Colour(0));
+  if (curve.corner_index) {
+    l_curve.Points({rho[*curve.corner_index]}, {eta[*curve.corner_index]},
+                   Figure::Colour(3), "largest turn (corner)");
   }
-  WritePngAtomically(image, path);
+  Figure turn("L-curve curvature against \u03bb", "\u03bb (px/m)", "curvature",
+              8.0, 3.5);
+  turn.LogX();
+  turn.Line(lambda, curvature, Figure::Colour(0));
+  if (curve.corner_weight_px_per_m) {
+    turn.VerticalLine(*curve.corner_weight_px_per_m, Figure::Colour(3),
+                      "corner");
+  }
+  if (curve.balance_weight_px_per_m) {
+    turn.VerticalLine(*curve.balance_weight_px_per_m, Figure::Colour(1),
+                      "balance");
+  }
+  if (curve.noise_weight_px_per_m) {
+    turn.VerticalLine(*curve.noise_weight_px_per_m, Figure::Colour(2),
+                      "noise levels");
+  }
+  WriteFigures({l_curve, turn},
+               {folder / "lcurve.png", folder / "lcurve_curvature.png"});
 }
 
 }  // namespace uw

@@ -78,9 +78,12 @@ LCurve SweepLCurve(
     const std::function<void(size_t, size_t, const LCurvePoint&)>& progress =
         nullptr);
 
-// The L-curve as JSON text and as a PNG plot (log-log objectives with the
-// corner marked; curvature against lambda below).
+// The L-curve as JSON text, and as figures in `folder`: lcurve.png/.svg
+// (the log-log objectives with the corner marked) and
+// lcurve_curvature.png/.svg (curvature against lambda, with the corner,
+// balance and noise-level weights).
 std::string LCurveJson(const LCurve& curve);
-void WriteLCurvePlot(const LCurve& curve, const std::filesystem::path& path);
+void WriteLCurveFigures(const LCurve& curve,
+                        const std::filesystem::path& folder);
 
 }  // namespace uw

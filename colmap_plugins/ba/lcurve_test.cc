@@ -9,6 +9,8 @@
 
 #include "colmap_plugins/ba/test_scene.h"
 #include "common/util/error.h"
+#include "common/util/file.h"
+#include "tests/support/svg_ticks.h"
 
 namespace uw {
 namespace {
@@ -81,18 +83,37 @@ TEST(LCurve, RejectsBadInput) {
   EXPECT_THROW(FindLCurveCorner(points), Error);
 }
 
-TEST(LCurve, PlotAndJsonAreWritten) {
+// Both figures are written, with axes a reader can read: decades or 1-2-5
+// steps, whatever the curve's span.
+TEST(LCurve, FiguresAndJsonAreWritten) {
   std::vector<LCurvePoint> points;
   for (const double lambda : LogSpacedWeights(1.0, 40.0, 15)) {
     points.push_back(ArcPoint(lambda));
   }
   const LCurve curve = FindLCurveCorner(points);
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / "uw_lcurve_test.png";
-  WriteLCurvePlot(curve, path);
-  const cv::Mat image = cv::imread(path.string());
-  EXPECT_EQ(image.cols, 800);
-  std::filesystem::remove(path);
+  // Reprojection mean squares within less than a decade (a log axis
+  // without a power of ten on it).
+  LCurve narrow = curve;
+  for (size_t i = 0; i < narrow.points.size(); ++i) {
+    narrow.points[i].reprojection_ms_px2 = 0.25 + 0.01 * i;
+  }
+  const LCurve* const curves[] = {&curve, &narrow};
+  for (const LCurve* c : curves) {
+    const std::filesystem::path folder =
+        std::filesystem::path(testing::TempDir()) / "uw_lcurve_test";
+    std::filesystem::remove_all(folder);
+    WriteLCurveFigures(*c, folder);
+    for (const char* name : {"lcurve", "lcurve_curvature"}) {
+      EXPECT_FALSE(
+          cv::imread((folder / (std::string(name) + ".png")).string()).empty());
+      const std::string svg =
+          ReadFileToString(folder / (std::string(name) + ".svg"));
+      for (const char axis : {'x', 'y'}) {
+        EXPECT_EQ(TickProblem(SvgTickLabels(svg, axis)), "")
+            << name << " " << axis;
+      }
+    }
+  }
   EXPECT_NE(LCurveJson(curve).find("corner_weight_px_per_m"),
             std::string::npos);
 }

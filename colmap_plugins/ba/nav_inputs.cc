@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "colmap_plugins/nav/geographic_positions.h"
 #include "common/util/error.h"
 
 namespace uw {
@@ -101,9 +102,15 @@ NavInputs LoadNavInputs(const NavInputOptions& options,
   if (!options.database_path.empty()) {
     const Database database =
         Database::Open(options.database_path, Database::Mode::kReadOnly);
-    return NavInputsFromDatabase(database.ReadAllPosePriors(), model,
-                                 options.position_sigma_m,
-                                 options.override_sigma);
+    NavLogFrame frame;
+    std::vector<std::string> warnings;
+    NavInputs inputs = NavInputsFromDatabase(
+        WithLocalPositions(database.ReadAllPosePriors(), options.nav.log.origin,
+                           options.database_path, &frame, &warnings),
+        model, options.position_sigma_m, options.override_sigma);
+    inputs.warnings = warnings;
+    if (frame.origin) inputs.world_frame = WorldFrameText(frame);
+    return inputs;
   }
   return {};
 }
@@ -156,8 +163,8 @@ NavInputs NavInputsFromDatabase(const std::vector<PosePrior>& priors,
     }
     if (database_prior.coordinate_system == PosePriorCoordinateSystem::kWGS84) {
       throw ErrorAt("the database prior of image ", image->name,
-                    " is in WGS84 (latitude, longitude); the bundle adjuster "
-                    "needs metric (cartesian) priors");
+                    " is in WGS84 (latitude, longitude): put the priors into "
+                    "a local frame first (WithLocalPositions)");
     }
     ImagePosePrior prior;
     prior.image_id = image->image_id;

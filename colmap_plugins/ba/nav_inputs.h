@@ -86,7 +86,8 @@ NavInputs NavInputsForModel(const std::vector<CameraPrior>& priors,
 
 // Priors of the model's images read from a COLMAP database (positions and,
 // from 3.11 on, covariances; a 3.8 database's rotation prior is not used:
-// it has no covariance).
+// it has no covariance). WGS84 priors must have been put into a local frame
+// (geographic_positions.h; LoadNavInputs does); one left is an error.
 NavInputs NavInputsFromDatabase(const std::vector<PosePrior>& priors,
                                 const Reconstruction& model,
                                 double position_sigma_override_m,

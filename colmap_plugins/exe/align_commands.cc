@@ -63,10 +63,14 @@ void AddModelAlignerFlags(CommandLine* cli, ModelAlignerOptions* options) {
   cli->Add("--transform_path", &options->transform_path,
            "Also write the similarity and the per-image residuals as JSON "
            "(docs/formats.md)");
-  cli->Add("--ref_is_gps", &options->ref_is_gps,
-           "As in colmap; only 0 (metric references) is supported");
+  cli->Add("--ref_is_gps", &alignment.ref_is_gps,
+           "1: --ref_images_path lines are 'image_name lat lon alt' (deg, "
+           "m), aligned to in local east-north-up metres at --origin (or "
+           "the first reference rounded to 0.001 deg, printed); needs "
+           "--alignment_type enu");
   cli->Add("--alignment_type", &options->alignment_type,
-           "As in colmap; only custom is supported");
+           "custom (references in metres), or enu with --ref_is_gps 1; "
+           "colmap's plane and ecef are not supported");
 }
 
 void RunModelAligner(const ModelAlignerOptions& options) {
@@ -196,16 +200,20 @@ void RunModelComparer(const ModelComparerOptions& options) {
 }  // namespace
 
 void ModelAlignerOptions::Check() const {
-  if (ref_is_gps) {
+  // colmap aligns GPS references into ECEF unless told enu: say which
+  // frame the model lands in rather than pick one silently.
+  if (alignment.ref_is_gps && alignment_type != "enu") {
     throw ErrorAt(
-        "--ref_is_gps 1: uwcolmap aligns to metric references "
-        "only; convert GPS to a local frame (ENU), or use colmap "
-        "model_aligner");
+        "--ref_is_gps 1 aligns into local east-north-up metres: "
+        "give --alignment_type enu (ECEF is not supported)");
   }
-  if (alignment_type != "custom") {
+  if (!alignment.ref_is_gps && alignment_type != "custom") {
     throw ErrorAt("--alignment_type ", alignment_type,
-                  ": only custom is supported; use colmap model_aligner "
-                  "for plane, ecef and enu");
+                  alignment_type == "enu"
+                      ? ": needs --ref_is_gps 1 (references in lat lon alt)"
+                      : ": only custom, and enu with --ref_is_gps 1, are "
+                        "supported; use colmap model_aligner for plane and "
+                        "ecef");
   }
   alignment.Check();
   std::error_code ignored;

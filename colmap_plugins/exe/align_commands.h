@@ -18,13 +18,14 @@ struct ModelAlignerOptions {
   std::string output_path;  // the aligned model, in the input's format
   ModelAlignmentOptions alignment;
   std::string transform_path;  // also the alignment JSON, if given
-  // colmap model_aligner's flags; only metric references and a custom
-  // alignment are supported.
-  bool ref_is_gps = false;
+  // colmap model_aligner's --alignment_type: custom, or enu with
+  // --ref_is_gps 1 (the frame it aligns into); plane and ecef are colmap's
+  // only.
   std::string alignment_type = "custom";
 
-  // The colmap flags uwcolmap supports, the alignment's rules, and an
-  // output folder that is not the input.
+  // The colmap flags uwcolmap supports (--ref_is_gps 1 only with
+  // --alignment_type enu), the alignment's rules, and an output folder that
+  // is not the input.
   void Check() const;
 };
 Subcommand ModelAlignerCommand();

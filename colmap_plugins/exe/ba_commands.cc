@@ -266,9 +266,10 @@ void RunBundleAdjuster(const BundleAdjusterOptions& options) {
       {{output / "ba_report.json",
         [&](std::ostream& out) { out << json.dump(2) << "\n"; }}},
       false);
-  if (result.lcurve) WriteLCurvePlot(*result.lcurve, output / "lcurve.png");
+  if (result.lcurve) WriteLCurveFigures(*result.lcurve, output);
   std::cout << "Wrote " << options.output_path << " (model, ba_report.json"
-            << (result.lcurve ? ", lcurve.png" : "") << ")\n";
+            << (result.lcurve ? ", lcurve.png, lcurve_curvature.png" : "")
+            << ")\n";
   if (covariance) WriteCovariance(*covariance, model, output / "covariance");
 }
 
@@ -278,7 +279,7 @@ void AddCovarianceEstimatorFlags(CommandLine* cli,
                               &options->adjuster);
   cli->Add("--output_path", &options->output_path,
            "Folder (new or empty) for covariance.bin, covariance.json, "
-           "cameras.csv, points.ply and uncertainty_map.png")
+           "cameras.csv, points.ply and uncertainty_map.png (and .svg)")
       ->required();
   AddCovarianceFlags(cli, &options->covariance);
 }
@@ -297,7 +298,8 @@ void AddLCurveFlags(CommandLine* cli, LCurveCommandOptions* options) {
   AddNavBundleAdjustmentFlags(cli, &lcurve.input_path, &lcurve.priors,
                               &lcurve.adjuster);
   cli->Add("--output_path", &options->output_path,
-           "Folder for lcurve.json and lcurve.png")
+           "Folder for lcurve.json and the figures lcurve.png and "
+           "lcurve_curvature.png (and .svg)")
       ->required();
   cli->Add("--lambda_min", &lcurve.lambda_min,
            "Smallest lambda, px/m (0: sigma_v/sigma_n / 30 with sigma_v from "
@@ -320,7 +322,7 @@ void RunLCurve(const LCurveCommandOptions& options) {
   WriteFilesAtomically(
       {{output / "lcurve.json", [&](std::ostream& out) { out << json; }}},
       false);
-  WriteLCurvePlot(result.curve, output / "lcurve.png");
+  WriteLCurveFigures(result.curve, output);
 }
 
 }  // namespace
@@ -402,7 +404,8 @@ Subcommand LCurveCommand() {
       "picks the point of maximum curvature (thesis ch. 4 §5.2.1); also "
       "reports the balance point and lambda from the estimated noise levels "
       "(what bundle_adjuster --Nav.weight auto uses). Writes lcurve.json and "
-      "lcurve.png; the model is not changed.\n\n"
+      "the figures lcurve.png and lcurve_curvature.png (with .svg); the "
+      "model is not changed.\n\n"
       "Example:\n"
       "  uwcolmap lcurve --input_path sparse/0 --output_path lcurve --nav "
       "sim/nav.csv --mount down --lambda_min 0.1 --lambda_max 100",

@@ -39,7 +39,7 @@ Subcommand CovarianceEstimatorCommand();
 
 struct LCurveCommandOptions {
   NavLCurveOptions lcurve;
-  std::string output_path;  // lcurve.json and lcurve.png
+  std::string output_path;  // lcurve.json and the figures
 
   void Check() const { lcurve.Check(); }
 };

@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "common/util/file.h"
-#include "common/util/plot.h"
+#include "common/util/png_file.h"
 #include "laserscale/spot_overlay.h"
 #include "laserscale/spots_io.h"
 
