@@ -177,15 +177,9 @@ void WriteCalibrationReport(const MrcalRigCalibration& result,
   if (!outlier_x.empty()) {
     residuals.Points(outlier_x, outlier_y, "black", "outliers");
   }
-  // Views are in the same order for every camera of a rig: the first
-  // camera's names label them.
-  if (std::all_of(result.cameras.begin(), result.cameras.end(),
-                  [&](const MrcalCalibration& camera) {
-                    return camera.images.size() ==
-                           result.cameras[0].images.size();
-                  })) {
-    per_image.ItemAxis(result.cameras[0].images);
-  }
+  // A rig's cameras see the board in different views, so only a single
+  // camera's images name the axis.
+  if (result.cameras.size() == 1) per_image.ItemAxis(result.cameras[0].images);
   const MrcalCalibration& first = result.cameras.at(0);
   const nlohmann::json report = {
       {"lens_model", first.lens_model},

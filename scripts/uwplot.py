@@ -42,7 +42,8 @@ def configure(matplotlib):
         "svg.fonttype": "none",
         "svg.hashsalt": "uwmetric",
         "axes.formatter.useoffset": False,
-        "axes.formatter.limits": (-5, 6),
+        # Image names are text, never mathtext between two '$'.
+        "text.parse_math": False,
         "axes.grid": True,
         "grid.alpha": 0.35,
         "font.size": 10,
@@ -51,8 +52,13 @@ def configure(matplotlib):
     })
 
 
+def plain_number(value):
+    """A log axis's tick as a plain number, as small or large as it is."""
+    import numpy
+    return numpy.format_float_positional(value, trim="-")
+
+
 def nice_ticks(axis, limits, ticker, is_log):
-    linear = ticker.MaxNLocator(nbins=8, steps=[1, 2, 5, 10], min_n_ticks=3)
     low, high = sorted(limits)
     if is_log and low > 0 and high / low >= 10:
         # Decades written as plain numbers (0.001, 10, 1000), not 10^k in
@@ -61,17 +67,17 @@ def nice_ticks(axis, limits, ticker, is_log):
         subs = (1.0, 2.0, 5.0) if high / low < 1000 else (1.0,)
         axis.set_major_locator(
             ticker.LogLocator(base=10.0, subs=subs, numticks=12))
-        axis.set_major_formatter(ticker.FuncFormatter(
-            lambda value, _: ("%.12f" % value).rstrip("0").rstrip(".")
-            if value < 1 else "%d" % round(value)))
+        axis.set_major_formatter(
+            ticker.FuncFormatter(lambda value, _: plain_number(value)))
     else:
-        # A log axis within a decade has no power of ten to label: 1-2-5
-        # steps as on a linear one.
-        axis.set_major_locator(linear)
-        if is_log:
-            formatter = ticker.ScalarFormatter(useOffset=False)
-            formatter.set_scientific(False)
-            axis.set_major_formatter(formatter)
+        # 1-2-5 steps (on a log axis within a decade too, which has no power
+        # of ten to label), each label the value itself: no offset and no
+        # "1e6" apart from the numbers.
+        axis.set_major_locator(
+            ticker.MaxNLocator(nbins=8, steps=[1, 2, 5, 10], min_n_ticks=3))
+        formatter = ticker.ScalarFormatter(useOffset=False)
+        formatter.set_scientific(False)
+        axis.set_major_formatter(formatter)
     if is_log:
         axis.set_minor_formatter(ticker.NullFormatter())
 
@@ -166,7 +172,7 @@ def run(spec_path):
     import matplotlib
     configure(matplotlib)
     from matplotlib import pyplot, ticker
-    with open(spec_path) as spec_file:
+    with open(spec_path, encoding="utf-8") as spec_file:
         spec = json.load(spec_file)
     for figure_spec in spec["figures"]:
         try:

@@ -326,7 +326,7 @@ TEST(ModelAligner, GpsReferencesAlignInLocalEastNorthUp) {
   const auto automatic = Uwcolmap(InOut(kSparseDir, dir / "automatic") +
                                   gps_flags + " --alignment_type enu");
   ASSERT_EQ(automatic.exit_code, 0) << automatic.output;
-  EXPECT_NE(automatic.output.find("automatic, its first fix rounded"),
+  EXPECT_NE(automatic.output.find("automatic, the first position rounded"),
             std::string::npos)
       << automatic.output;
   // colmap would align into ECEF without enu: the frame is asked for.

@@ -39,6 +39,11 @@ void ModelAlignmentOptions::Check() const {
         "and --nav (got ",
         num_sources, ")");
   }
+  if (nav.log.origin && !ref_images_path.empty() && !ref_is_gps) {
+    throw ErrorAt(
+        "--origin places geographic positions; --ref_images_path holds "
+        "metric ones unless --ref_is_gps 1");
+  }
   if (ref_is_gps && ref_images_path.empty()) {
     throw ErrorAt(
         "--ref_is_gps 1 reads --ref_images_path as 'image_name lat lon alt'; "

@@ -312,35 +312,46 @@ nlohmann::json CovarianceSummaryJson(const BundleCovariance& covariance,
   return json;
 }
 
-void WriteCovarianceFiles(const BundleCovariance& covariance,
-                          const Reconstruction& model,
-                          const std::filesystem::path& folder) {
-  const std::string json = CovarianceSummaryJson(covariance, model).dump(2);
-  const FigureFiles map = DrawFigures({MapFigure(covariance, model)}).at(0);
-  fs::create_directories(folder);
+CovarianceFiles::CovarianceFiles(const BundleCovariance& covariance,
+                                 const Reconstruction& model,
+                                 std::filesystem::path folder)
+    : covariance_(covariance),
+      model_(model),
+      folder_(std::move(folder)),
+      json_(CovarianceSummaryJson(covariance, model).dump(2)),
+      map_(DrawFigures({MapFigure(covariance, model)})) {}
+
+void CovarianceFiles::Write() const {
+  fs::create_directories(folder_);
   std::vector<PendingFile> files = {
-      {folder / "covariance.bin",
-       [&](std::ostream& out) { WriteSidecar(covariance, model, out); }},
-      {folder / "covariance.json",
-       [&](std::ostream& out) { out << json << "\n"; }},
-      {folder / "cameras.csv",
-       [&](std::ostream& out) { WriteCamerasCsv(covariance, model, out); }},
-      {folder / "points.ply",
-       [&](std::ostream& out) { WritePointsPly(covariance, model, out); }},
-      {folder / "uncertainty_map.png",
-       [&](std::ostream& out) { out << map.png; }},
-      {folder / "uncertainty_map.svg",
-       [&](std::ostream& out) { out << map.svg; }}};
-  if (covariance.samples.NumSamples() > 0) {
-    files.push_back({folder / "samples.bin", [&](std::ostream& out) {
-                       WriteCovarianceSamples(covariance.samples, model, out);
+      {folder_ / "covariance.bin",
+       [&](std::ostream& out) { WriteSidecar(covariance_, model_, out); }},
+      {folder_ / "covariance.json",
+       [&](std::ostream& out) { out << json_ << "\n"; }},
+      {folder_ / "cameras.csv",
+       [&](std::ostream& out) { WriteCamerasCsv(covariance_, model_, out); }},
+      {folder_ / "points.ply",
+       [&](std::ostream& out) { WritePointsPly(covariance_, model_, out); }}};
+  for (const PendingFile& figure :
+       FigureFileSet(map_, {folder_ / "uncertainty_map.png"})) {
+    files.push_back(figure);
+  }
+  if (covariance_.samples.NumSamples() > 0) {
+    files.push_back({folder_ / "samples.bin", [&](std::ostream& out) {
+                       WriteCovarianceSamples(covariance_.samples, model_, out);
                      }});
   }
   WriteFilesAtomically(files, true);
   // Draws of an earlier run would pass for this one's (same model).
-  if (covariance.samples.NumSamples() == 0) {
-    fs::remove(folder / "samples.bin");
+  if (covariance_.samples.NumSamples() == 0) {
+    fs::remove(folder_ / "samples.bin");
   }
+}
+
+void WriteCovarianceFiles(const BundleCovariance& covariance,
+                          const Reconstruction& model,
+                          const std::filesystem::path& folder) {
+  CovarianceFiles(covariance, model, folder).Write();
 }
 
 BundleCovariance ReadCovarianceSidecar(const std::filesystem::path& path,

@@ -15,11 +15,14 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "colmap_plugins/ba/bundle_covariance.h"
 #include "colmap_plugins/scene/model.h"
+#include "common/util/figure.h"
 
 namespace uw {
 
@@ -32,7 +35,25 @@ double EllipsoidVolume95(const Eigen::Matrix3d& covariance);
 nlohmann::json CovarianceSummaryJson(const BundleCovariance& covariance,
                                      const Reconstruction& model);
 
-// Writes the five files into `folder` together or not at all.
+// The files above for `folder`, prepared: the map is drawn on
+// construction, so that a plotting failure (no matplotlib) comes before a
+// command writes anything. Write() writes them together or not at all.
+// `covariance` and `model` must outlive it.
+class CovarianceFiles {
+ public:
+  CovarianceFiles(const BundleCovariance& covariance,
+                  const Reconstruction& model, std::filesystem::path folder);
+  void Write() const;
+
+ private:
+  const BundleCovariance& covariance_;
+  const Reconstruction& model_;
+  std::filesystem::path folder_;
+  std::string json_;
+  std::vector<FigureFiles> map_;
+};
+
+// Prepares and writes them.
 void WriteCovarianceFiles(const BundleCovariance& covariance,
                           const Reconstruction& model,
                           const std::filesystem::path& folder);

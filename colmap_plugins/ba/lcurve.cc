@@ -245,8 +245,12 @@ std::string LCurveJson(const LCurve& curve) {
   return json.dump(2) + "\n";
 }
 
-void WriteLCurveFigures(const LCurve& curve,
-                        const std::filesystem::path& folder) {
+std::vector<std::filesystem::path> LCurveFigurePaths(
+    const std::filesystem::path& folder) {
+  return {folder / "lcurve.png", folder / "lcurve_curvature.png"};
+}
+
+std::vector<Figure> LCurveFigures(const LCurve& curve) {
   std::vector<double> rho, eta, lambda, curvature;
   for (const LCurvePoint& point : curve.points) {
     rho.push_back(point.reprojection_ms_px2);
@@ -292,8 +296,7 @@ void WriteLCurveFigures(const LCurve& curve,
     turn.VerticalLine(*curve.noise_weight_px_per_m, Figure::Colour(2),
                       "noise levels");
   }
-  WriteFigures({l_curve, turn},
-               {folder / "lcurve.png", folder / "lcurve_curvature.png"});
+  return {l_curve, turn};
 }
 
 }  // namespace uw

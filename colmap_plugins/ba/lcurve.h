@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "colmap_plugins/ba/nav_bundle_adjuster.h"
+#include "common/util/figure.h"
 
 namespace uw {
 
@@ -78,12 +79,14 @@ LCurve SweepLCurve(
     const std::function<void(size_t, size_t, const LCurvePoint&)>& progress =
         nullptr);
 
-// The L-curve as JSON text, and as figures in `folder`: lcurve.png/.svg
-// (the log-log objectives with the corner marked) and
-// lcurve_curvature.png/.svg (curvature against lambda, with the corner,
-// balance and noise-level weights).
+// The L-curve as JSON text, and as figures (common/util/figure.h): the
+// log-log objectives with the corner marked, and the curvature against
+// lambda with the corner, balance and noise-level weights, written as
+// LCurveFigurePaths(folder).
 std::string LCurveJson(const LCurve& curve);
-void WriteLCurveFigures(const LCurve& curve,
-                        const std::filesystem::path& folder);
+std::vector<Figure> LCurveFigures(const LCurve& curve);
+// folder/lcurve.png and folder/lcurve_curvature.png (each with its .svg).
+std::vector<std::filesystem::path> LCurveFigurePaths(
+    const std::filesystem::path& folder);
 
 }  // namespace uw

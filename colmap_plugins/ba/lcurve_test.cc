@@ -102,7 +102,7 @@ TEST(LCurve, FiguresAndJsonAreWritten) {
     const std::filesystem::path folder =
         std::filesystem::path(testing::TempDir()) / "uw_lcurve_test";
     std::filesystem::remove_all(folder);
-    WriteLCurveFigures(*c, folder);
+    WriteFigures(LCurveFigures(*c), LCurveFigurePaths(folder));
     for (const char* name : {"lcurve", "lcurve_curvature"}) {
       EXPECT_FALSE(
           cv::imread((folder / (std::string(name) + ".png")).string()).empty());

@@ -191,12 +191,13 @@ BundleCovariance EstimateCovariance(
   return covariance;
 }
 
-void WriteCovariance(const BundleCovariance& covariance,
-                     const Reconstruction& model, const fs::path& folder) {
-  WriteCovarianceFiles(covariance, model, folder);
+void WriteCovariance(const CovarianceFiles& files,
+                     const BundleCovariance& covariance,
+                     const fs::path& folder) {
+  files.Write();
   PrintLine("Wrote " + folder.string() +
             " (covariance.bin, covariance.json, cameras.csv, points.ply, "
-            "uncertainty_map.png" +
+            "uncertainty_map.png and .svg" +
             (covariance.samples.NumSamples() > 0 ? ", samples.bin)" : ")"));
 }
 
@@ -261,16 +262,30 @@ void RunBundleAdjuster(const BundleAdjusterOptions& options) {
                            model, result.report.warnings);
   }
   const fs::path output(options.output_path);
+  // The figures too: a plotting failure (no matplotlib) writes nothing.
+  std::optional<CovarianceFiles> covariance_files;
+  if (covariance)
+    covariance_files.emplace(*covariance, model, output / "covariance");
+  const std::vector<FigureFiles> lcurve_figures =
+      result.lcurve ? DrawFigures(LCurveFigures(*result.lcurve))
+                    : std::vector<FigureFiles>();
   WriteModel(model, output, files.format);
-  WriteFilesAtomically(
-      {{output / "ba_report.json",
-        [&](std::ostream& out) { out << json.dump(2) << "\n"; }}},
-      false);
-  if (result.lcurve) WriteLCurveFigures(*result.lcurve, output);
+  std::vector<PendingFile> report = {
+      {output / "ba_report.json",
+       [&](std::ostream& out) { out << json.dump(2) << "\n"; }}};
+  if (result.lcurve) {
+    for (const PendingFile& figure :
+         FigureFileSet(lcurve_figures, LCurveFigurePaths(output))) {
+      report.push_back(figure);
+    }
+  }
+  WriteFilesAtomically(report, true);
   std::cout << "Wrote " << options.output_path << " (model, ba_report.json"
             << (result.lcurve ? ", lcurve.png, lcurve_curvature.png" : "")
             << ")\n";
-  if (covariance) WriteCovariance(*covariance, model, output / "covariance");
+  if (covariance) {
+    WriteCovariance(*covariance_files, *covariance, output / "covariance");
+  }
 }
 
 void AddCovarianceEstimatorFlags(CommandLine* cli,
@@ -288,9 +303,10 @@ void RunCovarianceEstimator(const CovarianceEstimatorOptions& options) {
   const Reconstruction model = ReadModel(options.input_path);
   const NavInputs inputs =
       LoadNavInputs(options.priors, model, options.input_path);
-  WriteCovariance(
-      EstimateCovariance(options.adjuster, inputs, options.covariance, model),
-      model, options.output_path);
+  const BundleCovariance covariance =
+      EstimateCovariance(options.adjuster, inputs, options.covariance, model);
+  WriteCovariance(CovarianceFiles(covariance, model, options.output_path),
+                  covariance, options.output_path);
 }
 
 void AddLCurveFlags(CommandLine* cli, LCurveCommandOptions* options) {
@@ -319,10 +335,13 @@ void RunLCurve(const LCurveCommandOptions& options) {
   }
   const std::string json = LCurveJson(result.curve);
   const fs::path output(options.output_path);
-  WriteFilesAtomically(
-      {{output / "lcurve.json", [&](std::ostream& out) { out << json; }}},
-      false);
-  WriteLCurveFigures(result.curve, output);
+  const std::vector<FigureFiles> figures =
+      DrawFigures(LCurveFigures(result.curve));
+  std::vector<PendingFile> files =
+      FigureFileSet(figures, LCurveFigurePaths(output));
+  files.push_back(
+      {output / "lcurve.json", [&](std::ostream& out) { out << json; }});
+  WriteFilesAtomically(files, true);
 }
 
 }  // namespace

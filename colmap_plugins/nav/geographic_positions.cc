@@ -54,7 +54,14 @@ std::vector<PosePrior> WithLocalPositions(
       ++num_cartesian;
     }
   }
-  if (positions.empty()) return priors;
+  if (positions.empty()) {
+    if (origin) {
+      throw ErrorAt(database,
+                    ": --origin places geographic positions, but "
+                    "none of its pose priors is WGS84");
+    }
+    return priors;
+  }
   if (num_cartesian > 0) {
     throw ErrorAt(database, ": ", positions.size(),
                   " pose priors are WGS84 (latitude, longitude) and ",

@@ -33,8 +33,9 @@ std::vector<Eigen::Vector3d> GeographicToLocal(
 // covariance of a WGS84 prior is dropped, since COLMAP defines no unit for
 // it (deg² or m²): `warnings` says how many were, and the caller's
 // --position_sigma then stands in. Throws uw::Error when the database
-// mixes WGS84 and cartesian priors (two frames). `database` names it in
-// messages; `frame` (if any) receives the origin.
+// mixes WGS84 and cartesian priors (two frames), or when an origin is
+// given for priors none of which is WGS84 (it would be ignored). `database`
+// names it in messages; `frame` (if any) receives the origin.
 std::vector<PosePrior> WithLocalPositions(
     const std::vector<PosePrior>& priors,
     const std::optional<GeoOrigin>& origin, const std::string& database,

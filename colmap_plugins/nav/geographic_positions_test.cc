@@ -79,6 +79,13 @@ TEST(WithLocalPositions, LeavesCartesianPriorsAndRefusesAMixture) {
   EXPECT_EQ(same[1].position, cartesian[1].position);
   EXPECT_TRUE(same[1].HasPositionCovariance());
   EXPECT_FALSE(frame.origin);
+  ExpectErrorContaining(
+      [&] {
+        WithLocalPositions(cartesian, truth.Origin(), "db.db", nullptr,
+                           nullptr);
+      },
+      "db.db: --origin places geographic positions, but none of its pose "
+      "priors is WGS84");
 
   priors[2] = cartesian[2];
   ExpectErrorContaining(

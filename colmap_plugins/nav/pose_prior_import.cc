@@ -66,12 +66,12 @@ std::string WorldFrameText(const NavLogFrame& frame) {
   if (!frame.origin) {
     return "the log's x,y,z (m)";
   }
-  std::string text = "local east-north-up (m) at " +
-                     GeoOriginText(*frame.origin) + " (lat,lon,height; the " +
-                     frame.position_columns + " of the log)";
+  std::string text =
+      "local east-north-up (m) at " + GeoOriginText(*frame.origin) +
+      " (lat,lon,height; read from " + frame.position_columns + ")";
   if (frame.origin_automatic) {
     text += fmt::format(
-        "; automatic, its first fix rounded: --origin {:.3f},{:.3f} gives "
+        "; automatic, the first position rounded: --origin {:.3f},{:.3f} gives "
         "later commands the same frame",
         frame.origin->lat_deg, frame.origin->lon_deg);
   }

@@ -483,7 +483,7 @@ TEST(PosePriorImporter, AGeographicLogIsReadAtItsOrigin) {
     ASSERT_EQ(result.exit_code, 0) << result.output;
     EXPECT_NE(result.output.find("World frame: local east-north-up (m) at "
                                  "43.100000000,5.400000000,0.0000 "
-                                 "(lat,lon,height; the lat,lon,alt of the log"),
+                                 "(lat,lon,height; read from lat,lon,alt)"),
               std::string::npos)
         << result.output;
     EXPECT_EQ(result.output.find("automatic") == std::string::npos,

@@ -152,12 +152,23 @@ std::vector<FigureFiles> DrawFigures(const std::vector<Figure>& figures) {
   }
   // NaN and infinities are not JSON: nlohmann writes them as null, which
   // uwplot.py leaves out as it does non-finite numbers.
-  WriteText(folder.path() / "spec.json", spec.dump());
+  // Names that are not UTF-8 are drawn with replacement characters rather
+  // than refused.
+  WriteText(
+      folder.path() / "spec.json",
+      spec.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   WriteText(folder.path() / "uwplot.py", kUwplotScript);
   const fs::path log = folder.path() / "uwplot.log";
-  const int code = RunProgram({kPython, (folder.path() / "uwplot.py").string(),
-                               (folder.path() / "spec.json").string()},
-                              log);
+  int code = 0;
+  try {
+    code = RunProgram({kPython, (folder.path() / "uwplot.py").string(),
+                       (folder.path() / "spec.json").string()},
+                      log);
+  } catch (const Error& error) {
+    throw ErrorAt("cannot draw the figures: ", error.what(),
+                  " (python3 and python3-matplotlib, installed by "
+                  "scripts/setup.sh)");
+  }
   if (code == kMissingModule) {
     throw ErrorAt("cannot draw the figures: ", TailOfFile(log, 3),
                   " (python3-matplotlib, installed by scripts/setup.sh)");
@@ -175,13 +186,12 @@ std::vector<FigureFiles> DrawFigures(const std::vector<Figure>& figures) {
   return files;
 }
 
-void WriteFigures(const std::vector<Figure>& figures,
-                  const std::vector<fs::path>& png_paths) {
-  if (figures.size() != png_paths.size()) {
-    throw ErrorAt("WriteFigures: ", figures.size(), " figures for ",
+std::vector<PendingFile> FigureFileSet(const std::vector<FigureFiles>& drawn,
+                                       const std::vector<fs::path>& png_paths) {
+  if (drawn.size() != png_paths.size()) {
+    throw ErrorAt("FigureFileSet: ", drawn.size(), " figures for ",
                   png_paths.size(), " paths");
   }
-  const std::vector<FigureFiles> drawn = DrawFigures(figures);
   std::vector<PendingFile> pending;
   for (size_t i = 0; i < drawn.size(); ++i) {
     const FigureFiles* files = &drawn[i];
@@ -190,7 +200,17 @@ void WriteFigures(const std::vector<Figure>& figures,
     pending.push_back({fs::path(png_paths[i]).replace_extension(".svg"),
                        [files](std::ostream& out) { out << files->svg; }});
   }
-  WriteFilesAtomically(pending, true);
+  return pending;
+}
+
+void WriteFigures(const std::vector<Figure>& figures,
+                  const std::vector<fs::path>& png_paths) {
+  if (figures.size() != png_paths.size()) {
+    throw ErrorAt("WriteFigures: ", figures.size(), " figures for ",
+                  png_paths.size(), " paths");
+  }
+  const std::vector<FigureFiles> drawn = DrawFigures(figures);
+  WriteFilesAtomically(FigureFileSet(drawn, png_paths), true);
 }
 
 }  // namespace uw

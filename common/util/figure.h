@@ -13,6 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/util/file.h"
+
 namespace uw {
 
 class Figure {
@@ -72,8 +74,15 @@ struct FigureFiles {
 // (quoting the script's message).
 std::vector<FigureFiles> DrawFigures(const std::vector<Figure>& figures);
 
+// The drawn figures as files to write with others in one atomic set
+// (file.h): drawn[i] as png_paths[i] and the same path with ".svg". The
+// writers point into `drawn`, which must outlive them.
+std::vector<PendingFile> FigureFileSet(
+    const std::vector<FigureFiles>& drawn,
+    const std::vector<std::filesystem::path>& png_paths);
+
 // Draws each figure as png_paths[i] and the same path with ".svg", and
-// writes all of them atomically as one set (file.h).
+// writes all of them atomically as one set.
 void WriteFigures(const std::vector<Figure>& figures,
                   const std::vector<std::filesystem::path>& png_paths);
 

@@ -32,8 +32,13 @@ TEST(Figure, TicksAreNiceMultiplesWrittenAsText) {
   Figure decades("decades", "x", "y");
   decades.Line({1e-3, 1e2}, {1.0, 2.0}, Figure::Colour(2));
   decades.LogX();
-  const std::vector<FigureFiles> drawn = DrawFigures({narrow, wide, decades});
-  ASSERT_EQ(drawn.size(), 3u);
+  // A northing in UTM and a millionth: matplotlib would put "1e6" or
+  // "1e-6" apart from the numbers.
+  Figure extremes("extremes", "easting", "northing");
+  extremes.Points({3.1e-6, 3.7e-6}, {5312345.0, 5312987.0}, Figure::Colour(3));
+  const std::vector<FigureFiles> drawn =
+      DrawFigures({narrow, wide, decades, extremes});
+  ASSERT_EQ(drawn.size(), 4u);
   for (const FigureFiles& files : drawn) {
     EXPECT_TRUE(IsPng(files.png));
     for (const char axis : {'x', 'y'}) {
@@ -50,6 +55,12 @@ TEST(Figure, TicksAreNiceMultiplesWrittenAsText) {
   const std::vector<std::string> x = SvgTickLabels(drawn[2].svg, 'x');
   ASSERT_FALSE(x.empty());
   EXPECT_NEAR(std::stod(x.front()), 1e-3, 1e-12);
+  const std::vector<std::string> northing = SvgTickLabels(drawn[3].svg, 'y');
+  const std::vector<std::string> easting = SvgTickLabels(drawn[3].svg, 'x');
+  ASSERT_FALSE(northing.empty());
+  ASSERT_FALSE(easting.empty());
+  EXPECT_NEAR(std::stod(northing.front()), 5.3123e6, 1e3);
+  EXPECT_NEAR(std::stod(easting.back()), 3.7e-6, 2e-7);
 }
 
 // Per-image axes are labelled with the images' names, thinned evenly to at
@@ -58,7 +69,7 @@ TEST(Figure, AnItemAxisNamesTheItems) {
   std::vector<std::string> names;
   std::vector<double> x, y;
   for (int i = 0; i < 130; ++i) {
-    names.push_back("dive 1/img_" + std::to_string(1000 + i) + ".png");
+    names.push_back("dive 1&2/<img_" + std::to_string(1000 + i) + ">.png");
     x.push_back(i);
     y.push_back(0.01 * i);
   }

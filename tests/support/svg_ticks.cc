@@ -69,7 +69,15 @@ std::vector<std::string> SvgTickLabels(const std::string& svg, char axis) {
     const size_t stop = svg.find("</text>", content);
     std::string label = svg.substr(content, stop - content);
     label = Replaced(label, "\u2212", "-");
-    label = Replaced(label, "&amp;", "&");
+    for (const auto& [entity, character] :
+         {std::pair<const char*, const char*>{"&lt;", "<"},
+          {"&gt;", ">"},
+          {"&quot;", "\""},
+          {"&#39;", "'"},
+          {"&apos;", "'"},
+          {"&amp;", "&"}}) {
+      label = Replaced(label, entity, character);
+    }
     labels.push_back(label);
   }
   return labels;
