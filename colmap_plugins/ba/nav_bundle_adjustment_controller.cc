@@ -39,13 +39,20 @@ void CheckNavAdjustment(const NavInputOptions& priors,
 
 // The noise levels behind --Nav.weight auto, with their two lines.
 NoiseLevels EstimateAndReportNoiseLevels(
-    const NavBundleAdjustmentOptions& adjuster,
-    const std::vector<ImagePosePrior>& priors, const Reconstruction& model,
-    const ProgressLines& progress) {
+    const NavBundleAdjustmentOptions& adjuster, const NavInputs& inputs,
+    const Reconstruction& model, const ProgressLines& progress) {
   Emit(progress,
        "Noise levels: images-only adjustment, then its similarity to the "
        "navigation");
-  const NoiseLevels levels = EstimateNoiseLevels(adjuster, priors, model);
+  const NoiseLevels levels =
+      EstimateNoiseLevels(adjuster, inputs.priors, model, inputs.image_times);
+  if (levels.difference_nav_scale > 0.0) {
+    Emit(progress,
+         fmt::format("  navigation residuals x{:g} of the stated sigmas; "
+                     "from image to image x{:g} (over 2 images x{:g})",
+                     levels.fit_nav_scale, levels.difference_nav_scale,
+                     levels.difference_lag2_nav_scale));
+  }
   Emit(progress,
        fmt::format("  sigma_v = {:g} px ({:g} dof), sigma_n = {:g} m ({:g} "
                    "dof; stated {:g} m, x{:g}): lambda = {:g} px/m",
@@ -90,6 +97,9 @@ nlohmann::json NoiseLevelsJson(const NoiseLevels& levels) {
           {"nav_sigma_m", levels.nav_sigma_m},
           {"stated_nav_sigma_m", levels.stated_nav_sigma_m},
           {"nav_scale", levels.nav_scale},
+          {"fit_nav_scale", levels.fit_nav_scale},
+          {"difference_nav_scale", levels.difference_nav_scale},
+          {"difference_lag2_nav_scale", levels.difference_lag2_nav_scale},
           {"navigation_dof", levels.navigation_dof},
           {"weight_px_per_m", levels.weight_px_per_m}};
 }
@@ -242,8 +252,8 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
     if (selection == NavWeightSelection::kFixed) {
       adjuster.weight_px_per_m = options.weight.fixed_px_per_m;
     } else {
-      result.noise_levels = EstimateAndReportNoiseLevels(
-          adjuster, inputs.priors, *model, progress);
+      result.noise_levels =
+          EstimateAndReportNoiseLevels(adjuster, inputs, *model, progress);
       adjuster.weight_px_per_m = result.noise_levels->weight_px_per_m;
     }
     if (selection == NavWeightSelection::kLCurveCorner ||
@@ -400,8 +410,8 @@ NavLCurveResult SweepModelLCurve(const NavLCurveOptions& options,
   AlignToPriorsPlausibly(inputs.priors, options.priors.plausibility,
                          options.priors.PriorsName(), kAcceptFlag,
                          options.adjuster, &aligned, &result.warnings);
-  result.noise_levels = EstimateAndReportNoiseLevels(
-      options.adjuster, inputs.priors, aligned, progress);
+  result.noise_levels =
+      EstimateAndReportNoiseLevels(options.adjuster, inputs, aligned, progress);
   result.curve = SweepAroundEstimate(
       options.adjuster, inputs, aligned, result.noise_levels, options.steps,
       options.lambda_min, options.lambda_max, progress);

@@ -8,15 +8,91 @@
 
 #include <Eigen/Cholesky>
 
+#include "colmap_plugins/ba/difference_noise.h"
 #include "colmap_plugins/ba/prior_alignment.h"
 #include "colmap_plugins/ba/scale_transfer.h"
 #include "common/util/error.h"
 
 namespace uw {
 
-NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
-                                const std::vector<ImagePosePrior>& priors,
-                                const Reconstruction& model) {
+namespace {
+
+// Departures of the similarity's residuals from the noise smaller than this
+// are not worth a warning (a smooth part 0.75x the noise).
+constexpr double kMinDepartureRatio = 1.25;
+// Differences over 2 images exceeding those over 1 by less than this are
+// not taken for shared errors, whatever the count (a gentle bend of the
+// model raises those over 2 a little).
+constexpr double kMinSharedErrorRatio = 1.5;
+
+// Replaces levels->nav_scale (the similarity's) by the second differences'
+// (difference_noise.h) unless neighbouring images share their errors, and
+// warns when the similarity's residuals exceed the differences' by more than
+// 3 sigmas of the two estimates: the residuals then hold a smooth departure
+// of the model, or of the navigation, that white noise does not explain.
+// `by_dive`: the dives are sequences of their own (with offsets; without,
+// the adjuster sees one navigation, and so do the differences).
+void ChooseDifferenceScale(
+    const std::vector<ImagePosePrior>& priors,
+    const std::vector<Eigen::Vector3d>& residuals,
+    const std::unordered_map<image_t, double>& image_times, bool by_dive,
+    NoiseLevels* levels) {
+  std::vector<TimedResidual> timed;
+  for (size_t i = 0; i < priors.size(); ++i) {
+    const auto time = image_times.find(priors[i].image_id);
+    if (time == image_times.end()) return;  // no clock, no order
+    timed.push_back({by_dive ? priors[i].dive : 1, time->second, residuals[i],
+                     priors[i].position_covariance});
+  }
+  const auto lag1 = EstimateDifferenceNoise(timed, 1);
+  const auto lag2 = EstimateDifferenceNoise(timed, 2);
+  if (!lag1 || !lag2) return;
+  levels->difference_nav_scale = lag1->scale;
+  levels->difference_lag2_nav_scale = lag2->scale;
+  const double shared_ratio = lag2->scale / lag1->scale;
+  const double departure = levels->fit_nav_scale / lag1->scale;
+  if (shared_ratio > std::max(kMinSharedErrorRatio,
+                              1.0 + 3.0 * std::hypot(lag1->RelativeSigma(),
+                                                     lag2->RelativeSigma()))) {
+    if (departure > kMinDepartureRatio) {
+      levels->warnings.push_back(fmt::format(
+          "the navigation's residuals to the images-only model differ more "
+          "over 2 images than over 1 ({:.3g}x): neighbouring images share "
+          "their navigation errors (a log interpolated between fixes, or "
+          "filtered), or the images-only model departs from the truth "
+          "within a few images. The navigation's noise is taken from the "
+          "whole residual, {:.3g}x the image-to-image one: too large if the "
+          "model departs (lambda too small); if the images share errors, "
+          "the adjustment, which takes them as independent, understates "
+          "the uncertainty of the model's placement",
+          shared_ratio, departure));
+    }
+    return;
+  }
+  levels->nav_scale = lag1->scale;
+  const double fit_relative_sigma =
+      1.0 / std::sqrt(2.0 * levels->navigation_dof);
+  if (departure > std::max(kMinDepartureRatio,
+                           1.0 + 3.0 * std::hypot(lag1->RelativeSigma(),
+                                                  fit_relative_sigma))) {
+    levels->warnings.push_back(fmt::format(
+        "the images-only model departs from the navigation smoothly along the "
+        "track: the residuals of their similarity are {:.3g}x the navigation's "
+        "noise from one image to the next. The images bend the model, or tie "
+        "the dives by few points, or the navigation drifts{}; the noise "
+        "level (and lambda) is the one from image to image, which a drift "
+        "exceeds",
+        departure,
+        by_dive ? "" : ", or the dives are offset (--Dive.offsets 1)"));
+  }
+}
+
+}  // namespace
+
+NoiseLevels EstimateNoiseLevels(
+    const NavBundleAdjustmentOptions& options,
+    const std::vector<ImagePosePrior>& priors, const Reconstruction& model,
+    const std::unordered_map<image_t, double>& image_times) {
   Reconstruction images_only = model;
   NavBundleAdjustmentOptions plain = options;
   plain.estimate_offset_covariance = false;
@@ -110,7 +186,10 @@ NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
                   " navigation priors leave no degrees of freedom to "
                   "estimate their noise");
   }
-  levels.nav_scale = std::sqrt(chi2 / levels.navigation_dof);
+  levels.fit_nav_scale = std::sqrt(chi2 / levels.navigation_dof);
+  levels.nav_scale = levels.fit_nav_scale;
+  ChooseDifferenceScale(linked, fit.residuals, image_times,
+                        options.dive_offsets, &levels);
   levels.stated_nav_sigma_m = NavSigma(priors);
   levels.nav_sigma_m = levels.nav_scale * levels.stated_nav_sigma_m;
   if (!(levels.nav_sigma_m > 0.0 && std::isfinite(levels.nav_sigma_m))) {

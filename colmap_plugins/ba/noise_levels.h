@@ -24,13 +24,23 @@
 // to, with the degrees of freedom the fitted parameters take away (the
 // naive per-coordinate mean squares give 0.8x).
 //
-// A model the images deform (wrong distortion, doming) inflates e_i, hence
-// sigma_n, and gives a smaller lambda: the navigation is then trusted less
-// than its noise alone would allow, which keeps its noise out of the shape.
+// A model the images deform (a long strip that bends, dives tied by few
+// points) is not a similarity of the truth: its departure inflates e_i,
+// and the similarity's s_n counted it as navigation noise (1.8-2x the
+// realised noise on uwsim's seafloor and canyon), which made lambda too
+// small to let the navigation straighten the model. With the images'
+// times (`image_times`), s_n is therefore the second differences' of the
+// e_i along each dive instead (difference_noise.h), which no smooth
+// departure reaches; the similarity's s_n is kept, and a departure beyond
+// its noise warned of, as is a log whose neighbouring images share their
+// errors (interpolated between fixes), where s_n stays the similarity's.
+// Without times, or with fewer than 10 differences, s_n is the
+// similarity's.
 #pragma once
 
 #include <map>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "colmap_plugins/ba/nav_bundle_adjuster.h"
@@ -39,8 +49,14 @@
 namespace uw {
 
 struct NoiseLevels {
-  double pixel_sigma = 0.0;         // sigma_v, px per image coordinate
-  double nav_scale = 0.0;           // s_n: observed / stated prior sigma
+  double pixel_sigma = 0.0;  // sigma_v, px per image coordinate
+  double nav_scale = 0.0;    // s_n: observed / stated prior sigma
+  // The two estimates s_n is chosen from: the similarity's residuals
+  // (above), and their second differences along each dive at lags 1 and 2
+  // (difference_noise.h; 0 without image times or with too few images).
+  double fit_nav_scale = 0.0;
+  double difference_nav_scale = 0.0;
+  double difference_lag2_nav_scale = 0.0;
   double stated_nav_sigma_m = 0.0;  // NavSigma(priors)
   double nav_sigma_m = 0.0;         // sigma_n = s_n * stated, m
   double weight_px_per_m = 0.0;     // lambda = sigma_v / sigma_n
@@ -59,10 +75,13 @@ struct NoiseLevels {
 
 // Runs the images-only adjustment (options' intrinsics and loss, no priors,
 // no rig) on a copy of `model`, aligns it to the priors and returns the
-// estimates. Throws uw::Error when a group has no degrees of freedom left
-// or the alignment fails (fewer than 3 or collinear priors).
-NoiseLevels EstimateNoiseLevels(const NavBundleAdjustmentOptions& options,
-                                const std::vector<ImagePosePrior>& priors,
-                                const Reconstruction& model);
+// estimates. `image_times` (seconds, the navigation's clock) orders each
+// dive's priors for the differences. Throws uw::Error when a group has no
+// degrees of freedom left or the alignment fails (fewer than 3 or collinear
+// priors).
+NoiseLevels EstimateNoiseLevels(
+    const NavBundleAdjustmentOptions& options,
+    const std::vector<ImagePosePrior>& priors, const Reconstruction& model,
+    const std::unordered_map<image_t, double>& image_times = {});
 
 }  // namespace uw
