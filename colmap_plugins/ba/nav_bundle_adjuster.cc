@@ -257,6 +257,10 @@ class Adjustment {
   }
   // Sum over observations of |reprojection error|^2, px^2.
   double SumSquaredReprojection() const;
+  // 2M minus the parameters the images determine (all but a similarity, a
+  // rigid motion with a rig): the reprojection residuals' degrees of
+  // freedom.
+  long ReprojectionRedundancy() const;
   // Moves the model by the similarity that minimises the position priors'
   // term for its current shape; false when that similarity is the identity
   // (to rounding).
@@ -845,15 +849,26 @@ bool Adjustment::ReplaceOnPriors() {
 
 void Adjustment::EstimateOffsetCovariance(NavBundleAdjustmentReport* report) {
   const auto start = Clock::now();
-  // Statistical weights: pixels by the reprojection RMS per coordinate,
-  // rig terms by their stated sigmas, priors as the adjustment weighted
-  // them (likelihood weighting: their sigmas x rms / (lambda sigma_n), as
+  // Statistical weights: pixels by their sigma, the residuals' RMS per
+  // degree of freedom (as ChoosePixelSigma), rig terms by their stated
+  // sigmas, priors as the adjustment weighted them (likelihood weighting:
+  // their sigmas x sigma_px / (lambda sigma_n), as
   // BundleCovarianceOptions::nav_weight_px_per_m). By their stated sigmas
   // they described another problem than the one solved: under --Nav.weight
   // auto with sigma_n 12x the stated (a seafloor survey whose dives the
-  // images barely tie), an offset 1.3 m off was given +- 0.29 m.
-  const double rms_px =
-      std::sqrt(report->final_terms.at("reprojection").mean_squared / 2.0);
+  // images barely tie), an offset 1.3 m off was given +- 0.29 m. Until
+  // 2026-12-07 the pixels were weighted by the RMS per coordinate, which
+  // the fitted points and poses lower (0.445 px for 0.5 on the vent): the
+  // offsets' sigmas came out 1.12-1.42x small on uwsim's worlds, |error| /
+  // sigma RMS 1.48 over 63 coordinates.
+  const long redundancy = ReprojectionRedundancy();
+  if (redundancy <= 0) {
+    report->covariance_note =
+        "covariance not computed: the images have no redundancy to "
+        "estimate their pixel noise";
+    return;
+  }
+  const double rms_px = std::sqrt(SumSquaredReprojection() / redundancy);
   Weights weights;
   weights.reprojection = 1.0 / std::max(rms_px, 1e-6);
   weights.reprojection_loss_scale = options_.loss_scale_px / rms_px;
@@ -893,8 +908,9 @@ void Adjustment::EstimateOffsetCovariance(NavBundleAdjustmentReport* report) {
     }
     report->covariance_note =
         "Ceres covariance of the offsets with each residual weighted by its "
-        "own sigma (reprojection RMS " +
-        std::to_string(rms_px) + " px per coordinate; " +
+        "own sigma (pixel sigma " +
+        std::to_string(rms_px) + " px, the reprojection residuals over " +
+        std::to_string(redundancy) + " degrees of freedom; " +
         (likelihood ? "priors and rig terms as the adjustment weighted them: "
                       "the priors' stated sigmas x " +
                           std::to_string(1.0 / weights.nav)
@@ -1180,15 +1196,7 @@ std::string Adjustment::ChooseCovarianceGauge(CovarianceGauge gauge) {
   return "?";
 }
 
-void Adjustment::ChoosePixelSigma(const BundleCovarianceOptions& options,
-                                  BundleCovariance* covariance) const {
-  if (options.pixel_sigma_px > 0.0) {
-    covariance->pixel_sigma_px = options.pixel_sigma_px;
-    covariance->pixel_sigma_source = "given";
-    return;
-  }
-  // The images alone fix everything but a similarity (a rigid motion with
-  // a rig): their redundancy is 2M minus the parameters they determine.
+long Adjustment::ReprojectionRedundancy() const {
   long parameters = 3 * static_cast<long>(points_.size());
   if (options_.refine_extrinsics)
     parameters += 6 * static_cast<long>(poses_.size());
@@ -1200,10 +1208,21 @@ void Adjustment::ChoosePixelSigma(const BundleCovarianceOptions& options,
                               .size());
   }
   if (options_.refine_extrinsics) parameters -= rig_pairings_.empty() ? 7 : 6;
-  const long redundancy = 2 * static_cast<long>(num_observations_) - parameters;
+  return 2 * static_cast<long>(num_observations_) - parameters;
+}
+
+void Adjustment::ChoosePixelSigma(const BundleCovarianceOptions& options,
+                                  BundleCovariance* covariance) const {
+  if (options.pixel_sigma_px > 0.0) {
+    covariance->pixel_sigma_px = options.pixel_sigma_px;
+    covariance->pixel_sigma_source = "given";
+    return;
+  }
+  const long redundancy = ReprojectionRedundancy();
   if (redundancy <= 0) {
     throw ErrorAt("the images have no redundancy (", 2 * num_observations_,
-                  " reprojection coordinates for ", parameters,
+                  " reprojection coordinates for ",
+                  2 * static_cast<long>(num_observations_) - redundancy,
                   " parameters): the pixel noise cannot be estimated; give "
                   "--Covariance.pixel_sigma");
   }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <unordered_map>
 
 #include <gtest/gtest.h>
 
@@ -144,6 +145,75 @@ TEST(NoiseLevels, ThreeDivesAtTheirRealisedNoise) {
   }
   std::cout << "\n";
   EXPECT_LT(std::abs(std::log(levels.nav_sigma_m / realised_m)), std::log(1.5));
+}
+
+// The estimate sees white noise, not a smooth departure of the images-only
+// model from the navigation (here put into the priors: a bowl 0.6 m deep
+// over the survey, which a similarity cannot take). With the images'
+// times, s_n comes from the second differences along the track and the
+// departure is warned of; without them, the similarity's residuals
+// count the bowl as noise. A log interpolated halfway between fixes keeps
+// the similarity's estimate, since its neighbours share their errors.
+TEST(NoiseLevels, ASmoothDepartureIsNotNoise) {
+  test::TestSceneOptions scene_options;
+  scene_options.num_lines = 6;
+  scene_options.images_per_line = 10;
+  scene_options.num_points = 1200;
+  scene_options.nav_sigma_m = 0.07;
+  const test::TestScene scene = test::MakeTestScene(scene_options);
+  std::unordered_map<image_t, double> image_times;
+  std::vector<Eigen::Vector3d> noise;  // prior minus truth, in time order
+  for (const ImagePosePrior& prior : scene.priors) {
+    image_times[prior.image_id] = 2.0 * prior.image_id;
+    noise.push_back(prior.position_in_world -
+                    scene.truth.FindImage(prior.image_id)->ProjectionCenter());
+  }
+  double squared = 0.0;
+  for (const Eigen::Vector3d& n : noise) squared += n.squaredNorm();
+  const double realised_m = std::sqrt(squared / (3.0 * noise.size()));
+  std::vector<ImagePosePrior> bowl = scene.priors;
+  for (ImagePosePrior& prior : bowl) {
+    const Eigen::Vector3d centre =
+        scene.truth.FindImage(prior.image_id)->ProjectionCenter();
+    const double u = centre.x() / 2.7 - 1.0, v = centre.y() / 2.5 - 1.0;
+    prior.position_in_world +=
+        Eigen::Vector3d(0.1 * u * v, 0.0, 0.3) * (u * u + v * v);
+  }
+  const NavBundleAdjustmentOptions options = test::FixedIntrinsics();
+  const NoiseLevels timed =
+      EstimateNoiseLevels(options, bowl, scene.observed, image_times);
+  const NoiseLevels untimed =
+      EstimateNoiseLevels(options, bowl, scene.observed);
+  std::cout << "[ figures ] 7 cm and a 0.6 m bowl: sigma_n "
+            << timed.nav_sigma_m << " m from differences, "
+            << untimed.nav_sigma_m << " m from the similarity, " << realised_m
+            << " m realised\n";
+  EXPECT_DOUBLE_EQ(timed.fit_nav_scale, untimed.nav_scale);
+  EXPECT_EQ(untimed.difference_nav_scale, 0.0);
+  EXPECT_LT(std::abs(std::log(timed.nav_sigma_m / realised_m)), std::log(1.3));
+  EXPECT_GT(untimed.nav_sigma_m, 1.5 * realised_m);  // 1.95x
+  ASSERT_FALSE(timed.warnings.empty());
+  EXPECT_NE(timed.warnings.back().find("departs from the navigation smoothly"),
+            std::string::npos);
+  // Without the bowl, no warning and about the same estimate.
+  const NoiseLevels plain =
+      EstimateNoiseLevels(options, scene.priors, scene.observed, image_times);
+  EXPECT_TRUE(plain.warnings.empty());
+  EXPECT_LT(std::abs(std::log(plain.nav_sigma_m / realised_m)), std::log(1.3));
+
+  std::vector<ImagePosePrior> interpolated = bowl;
+  for (size_t i = 1; i + 1 < interpolated.size(); i += 2) {
+    interpolated[i].position_in_world +=
+        0.5 * (noise[i - 1] + noise[i + 1]) - noise[i];
+  }
+  const NoiseLevels shared =
+      EstimateNoiseLevels(options, interpolated, scene.observed, image_times);
+  EXPECT_DOUBLE_EQ(shared.nav_scale, shared.fit_nav_scale);
+  EXPECT_GT(shared.difference_lag2_nav_scale,
+            1.5 * shared.difference_nav_scale);
+  ASSERT_FALSE(shared.warnings.empty());
+  EXPECT_NE(shared.warnings.back().find("share their navigation errors"),
+            std::string::npos);
 }
 
 // A log three times noisier than it states: many of its errors exceed the
