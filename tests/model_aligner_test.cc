@@ -321,6 +321,17 @@ TEST(ModelAligner, GpsReferencesAlignInLocalEastNorthUp) {
                 .find("local east-north-up (m) at -33.875"),
             std::string::npos)
       << sim3.at("world_frame");
+  // Beside the model, in a form a GIS reads; none beside a metric one.
+  const nlohmann::json frame =
+      nlohmann::json::parse(ReadFileToString(dir / "gps" / "world_frame.json"));
+  EXPECT_EQ(frame.at("format"), "uwmetric-world-frame");
+  EXPECT_EQ(frame.at("origin").at("lat_deg"), -33.875);
+  EXPECT_EQ(frame.at("origin").at("lon_deg"), 151.25);
+  EXPECT_EQ(frame.at("origin").at("height_m"), 10.0);
+  EXPECT_EQ(frame.at("origin").at("datum"), "WGS84");
+  EXPECT_EQ(frame.at("axes"), nlohmann::json({"east", "north", "up"}));
+  EXPECT_EQ(frame.at("origin_automatic"), false);
+  EXPECT_FALSE(fs::exists(dir / "metric" / "world_frame.json"));
 
   // Without --origin: the first reference rounded, printed for reuse.
   const auto automatic = Uwcolmap(InOut(kSparseDir, dir / "automatic") +

@@ -3,8 +3,13 @@
 // (10 % of each dive's area shared with the next), fused by
 // `uwcolmap bundle_adjuster --Dive.offsets 1` with default flags. Every
 // run converges or fails loudly (never exit 0 unconverged), the dive
-// offsets lie within 3 of their sigmas of the true ones, and the noise
-// estimate within 1.5x of the realised noise. Where the images-only model
+// offsets lie within 3 of their sigmas of the ideal estimate (the joint
+// fit of the true positions to the logs, MultiDiveChain), and the noise
+// estimate within 1.5x of the realised noise. The offsets' errors against
+// the biases uwsim applied are printed too: on the scarp, whose dives are
+// long, uwsim's drift moves a dive's mean navigation error, which no
+// estimator tells from its bias (scarp 3: the ideal estimate itself 6
+// of its sigmas from the bias). Where the images-only model
 // is not a similarity of the truth (the canyon's and the scarp's long
 // strips bend; the seafloor's dives, 10 % shared, are tied by few points)
 // the similarity's residuals counted that as navigation noise (1.8-2x);
@@ -52,19 +57,26 @@ TEST_P(MultiDiveWorlds, ConvergesOrFailsWithOffsetsWithinTheirSigmas) {
   const testing::MultiDiveChain chain =
       testing::RunMultiDiveChain(UW_BIN_DIR, dir / "config.json", dir, 20000);
   double worst = 0.0;
+  double worst_ideal = 0.0;
   for (size_t d = 0; d < chain.dives.size(); ++d) {
     worst = std::max(worst, chain.offset_errors[d]
                                 .cwiseQuotient(chain.offset_sigmas[d])
                                 .cwiseAbs()
                                 .maxCoeff());
+    worst_ideal =
+        std::max(worst_ideal, chain.ideal_offset_errors[d]
+                                  .cwiseQuotient(chain.offset_sigmas[d])
+                                  .cwiseAbs()
+                                  .maxCoeff());
   }
   std::cout << fmt::format(
       "[ chain ] {} {} exit {} {} {} iterations; realised {:.4f} m, "
-      "sigma_n {:.4f} m ({:.2f}x); worst offset error {:.2f} sigma; {} "
-      "warnings\n",
+      "sigma_n {:.4f} m ({:.2f}x); worst offset error {:.2f} sigma from the "
+      "ideal estimate, {:.2f} from the bias; {} warnings\n",
       world, seed, chain.exit_code, chain.termination, chain.iterations,
       chain.realised_nav_m, chain.nav_sigma_m,
-      chain.nav_sigma_m / chain.realised_nav_m, worst, chain.warnings.size());
+      chain.nav_sigma_m / chain.realised_nav_m, worst_ideal, worst,
+      chain.warnings.size());
   if (chain.exit_code != 0) {
     // Loudly: an error that says why, nothing written.
     EXPECT_NE(chain.output.find("ERROR"), std::string::npos) << chain.output;
@@ -75,7 +87,7 @@ TEST_P(MultiDiveWorlds, ConvergesOrFailsWithOffsetsWithinTheirSigmas) {
   EXPECT_EQ(chain.dives.size(), 2u);
   for (size_t d = 0; d < chain.dives.size(); ++d) {
     for (int k = 0; k < 3; ++k) {
-      EXPECT_LT(std::abs(chain.offset_errors[d](k)),
+      EXPECT_LT(std::abs(chain.ideal_offset_errors[d](k)),
                 3.0 * chain.offset_sigmas[d](k))
           << "dive " << chain.dives[d] << " axis " << k;
     }

@@ -172,6 +172,11 @@ TEST(NavBundleAdjusterUwsim, ThreeDivesFarApartConvergeWithDefaultFlags) {
   const testing::MultiDiveChain chain = ExpectThreeDivesFused(
       "nav_ba_three_dives.json", "uw_nav_ba_three_dives", true);
   EXPECT_TRUE(chain.warnings.empty()) << chain.output;
+  // The model's frame beside it: the log's own x,y,z here.
+  const nlohmann::json frame = nlohmann::json::parse(
+      ReadFileToString(chain.output_dir / "world_frame.json"));
+  EXPECT_EQ(frame.at("origin"), nullptr);
+  EXPECT_EQ(frame.at("description"), "the log's x,y,z (m)");
 }
 
 // On the seafloor, whose third dive shares no point that 3 images see with

@@ -208,7 +208,7 @@ ModelAlignment AlignByClosestPoints(const Reconstruction& model,
   alignment.reference = nav.nav_path.string() + " (path of " +
                         std::to_string(path.positions.size()) + " samples)";
   alignment.association = ReferenceAssociation::kClosestPoint;
-  alignment.world_frame = WorldFrameText(frame);
+  alignment.world_frame = frame;
   alignment.num_references = path.positions.size();
   alignment.covariance_weighted = !path.covariances.empty();
   std::vector<Eigen::Vector3d> centres;
@@ -259,7 +259,7 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
     alignment = AlignByName(
         model, WithPositionSigma(references, options.position_sigma_m),
         options.ref_images_path, options.similarity);
-    if (frame.origin) alignment.world_frame = WorldFrameText(frame);
+    if (frame.origin) alignment.world_frame = frame;
   } else if (!options.database_path.empty()) {
     const Database database =
         Database::Open(options.database_path, Database::Mode::kReadOnly);
@@ -271,7 +271,7 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
                                            &frame, &log_warnings),
             options.position_sigma_m),
         options.database_path + " (pose priors)", options.similarity);
-    if (frame.origin) alignment.world_frame = WorldFrameText(frame);
+    if (frame.origin) alignment.world_frame = frame;
   } else {
     const NavigationReferenceSet navigation =
         NavigationReferences(options.nav, model);
@@ -282,7 +282,7 @@ ModelAlignment AlignModel(const ModelAlignmentOptions& options,
         options.nav.nav_path.string(), options.similarity);
     alignment.num_references += navigation.other_images.size();
     alignment.unknown_names = navigation.other_images;
-    alignment.world_frame = WorldFrameText(navigation.frame);
+    alignment.world_frame = navigation.frame;
   }
   if (alignment.image_names.size() <
       static_cast<size_t>(options.min_common_images)) {
@@ -351,7 +351,8 @@ nlohmann::json ModelAlignmentJson(const ModelAlignment& alignment) {
       {"rms_m", similarity.rms_m},
       {"plausibility", PlausibilityJson(alignment.plausibility)},
       {"warnings", alignment.warnings},
-      {"world_frame", alignment.world_frame},
+      {"world_frame",
+       alignment.world_frame ? WorldFrameText(*alignment.world_frame) : ""},
       {"images", images}};
   if (alignment.association == ReferenceAssociation::kClosestPoint) {
     json["iterations"] = alignment.iterations;
@@ -364,8 +365,9 @@ std::string FormatModelAlignment(const ModelAlignment& alignment) {
   const SimilarityResult& similarity = alignment.similarity;
   const Sim3d& sim3 = similarity.b_from_a;
   std::string text = fmt::format("Reference: {}\n", alignment.reference);
-  if (!alignment.world_frame.empty()) {
-    text += fmt::format("World frame: {}\n", alignment.world_frame);
+  if (alignment.world_frame) {
+    text += fmt::format("World frame: {}\n",
+                        WorldFrameText(*alignment.world_frame));
   }
   if (alignment.association == ReferenceAssociation::kName) {
     text +=

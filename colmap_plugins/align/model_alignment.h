@@ -7,6 +7,7 @@
 // navigation path (path_association.h).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -73,9 +74,9 @@ struct ModelAlignment {
   bool converged = true;
   AlignmentPlausibility plausibility;
   // The frame of the references from a navigation log or geographic
-  // references (WorldFrameText); empty for metric ref_images.txt and
+  // references (world_frame.json's); none for metric ref_images.txt and
   // database priors, whose frame is theirs.
-  std::string world_frame;
+  std::optional<NavLogFrame> world_frame;
   // What the user must know about the result (centres on one line).
   std::vector<std::string> warnings;
 };

@@ -116,7 +116,8 @@ TEST(ModelAlignment, NavigationRowsOfOtherImagesAreNoError) {
 
   const ModelAlignment alignment = AlignModel(options, model);
   EXPECT_EQ(alignment.reference, options.nav.nav_path.string());
-  EXPECT_EQ(alignment.world_frame, "the log's x,y,z (m)");
+  ASSERT_TRUE(alignment.world_frame);
+  EXPECT_EQ(WorldFrameText(*alignment.world_frame), "the log's x,y,z (m)");
   EXPECT_EQ(ModelAlignmentJson(alignment)["world_frame"],
             "the log's x,y,z (m)");
   EXPECT_EQ(alignment.image_names.size(), 5u);

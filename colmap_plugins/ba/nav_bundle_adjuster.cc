@@ -6,6 +6,7 @@
 #include <memory>
 #include <set>
 #include <thread>
+#include <unordered_set>
 
 #include <ceres/ceres.h>
 #include <fmt/format.h>
@@ -273,6 +274,14 @@ class Adjustment {
   // rounds apply, else each dive's mean residual.
   void SeedDiveOffsets();
   void EstimateOffsetCovariance(NavBundleAdjustmentReport* report);
+  // Images (indices into poses_) whose pose the images do not fix, and
+  // the points that leaves with fewer than two images, in turn until none
+  // is left: an image seeing fewer than 3 points that 2 of the others see.
+  struct UndeterminedByImages {
+    std::vector<size_t> images;
+    std::vector<point3D_t> points;
+  };
+  UndeterminedByImages FindUndeterminedByImages() const;
   // Checks that `gauge` is one this problem can have and fixes it; returns
   // its description.
   std::string ChooseCovarianceGauge(CovarianceGauge gauge);
@@ -847,6 +856,44 @@ bool Adjustment::ReplaceOnPriors() {
   return true;
 }
 
+Adjustment::UndeterminedByImages Adjustment::FindUndeterminedByImages() const {
+  const std::vector<Image>& images = reconstruction_->Images();
+  std::vector<bool> image_out(images.size(), false);
+  std::unordered_set<point3D_t> point_out;
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<int> seen(images.size(), 0);
+    for (const Point3D& point : reconstruction_->Points3D()) {
+      if (point_out.count(point.point3D_id) != 0) continue;
+      int observers = 0;
+      for (const TrackElement& element : point.track) {
+        observers += !image_out[image_index_.at(element.image_id)];
+      }
+      if (observers < 2) {
+        point_out.insert(point.point3D_id);
+        changed = true;
+        continue;
+      }
+      for (const TrackElement& element : point.track) {
+        ++seen[image_index_.at(element.image_id)];
+      }
+    }
+    for (size_t i = 0; i < images.size(); ++i) {
+      if (!image_out[i] && seen[i] < 3) {
+        image_out[i] = true;
+        changed = true;
+      }
+    }
+  }
+  UndeterminedByImages undetermined;
+  for (size_t i = 0; i < images.size(); ++i) {
+    if (image_out[i]) undetermined.images.push_back(i);
+  }
+  undetermined.points.assign(point_out.begin(), point_out.end());
+  std::sort(undetermined.points.begin(), undetermined.points.end());
+  return undetermined;
+}
+
 void Adjustment::EstimateOffsetCovariance(NavBundleAdjustmentReport* report) {
   const auto start = Clock::now();
   // Statistical weights: pixels by their sigma, the residuals' RMS per
@@ -882,8 +929,29 @@ void Adjustment::EstimateOffsetCovariance(NavBundleAdjustmentReport* report) {
   weights.rig = likelihood ? pixel_sigma_ / std::max(rms_px, 1e-6) : 1.0;
   ceres::Problem::Options problem_options;
   problem_options.manifold_ownership = ceres::TAKE_OWNERSHIP;
+  problem_options.enable_fast_removal = true;
   ceres::Problem problem(problem_options);
   Build(weights, &problem, nullptr);
+  const UndeterminedByImages undetermined = FindUndeterminedByImages();
+  for (const size_t i : undetermined.images) {
+    problem.RemoveParameterBlock(poses_[i].rotation);
+    problem.RemoveParameterBlock(poses_[i].translation);
+  }
+  for (const point3D_t id : undetermined.points) {
+    problem.RemoveParameterBlock(points_.at(id).data());
+  }
+  const std::string left_out =
+      undetermined.images.empty()
+          ? std::string()
+          : fmt::format(
+                "; {} {} fewer than 3 points seen twice (e.g. {}) and {} "
+                "points left with one image left out: the images do not fix "
+                "their poses, so their priors tell nothing of the offsets",
+                undetermined.images.size(),
+                undetermined.images.size() == 1 ? "image that sees"
+                                                : "images that see",
+                reconstruction_->Images()[undetermined.images.front()].name,
+                undetermined.points.size());
 
   ceres::Covariance::Options covariance_options;
   covariance_options.num_threads = NumThreads();
@@ -896,7 +964,12 @@ void Adjustment::EstimateOffsetCovariance(NavBundleAdjustmentReport* report) {
   if (!covariance.Compute(blocks, &problem)) {
     report->covariance_note =
         "covariance not computed: the problem is rank deficient (check that "
-        "every dive overlaps another one)";
+        "every dive overlaps another one)" +
+        left_out;
+    report->warnings.push_back(
+        "the dive offsets have no uncertainty: their covariance is rank "
+        "deficient" +
+        left_out);
   } else {
     for (DiveOffsetEstimate& estimate : report->dive_offsets) {
       if (estimate.dive == reference_dive_) continue;
@@ -916,7 +989,7 @@ void Adjustment::EstimateOffsetCovariance(NavBundleAdjustmentReport* report) {
                           std::to_string(1.0 / weights.nav)
                     : std::string("priors and rig terms by their stated "
                                   "sigmas (thesis weighting)")) +
-        ")";
+        ")" + left_out;
   }
   report->covariance_time_s =
       std::chrono::duration<double>(Clock::now() - start).count();

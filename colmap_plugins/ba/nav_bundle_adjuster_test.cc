@@ -167,6 +167,14 @@ test::TestSceneOptions TwoDiveSceneOptions() {
   return scene_options;
 }
 
+// Fixed intrinsics, dive offsets, the priors weighted by `weight_px_per_m`.
+NavBundleAdjustmentOptions WithOffsets(double weight_px_per_m) {
+  NavBundleAdjustmentOptions options = test::FixedIntrinsics();
+  options.weight_px_per_m = weight_px_per_m;
+  options.dive_offsets = true;
+  return options;
+}
+
 TEST(NavBundleAdjuster, DiveOffsetsRecoverTheBiasWithinTheirCovariance) {
   const test::TestSceneOptions scene_options = TwoDiveSceneOptions();
   const test::TestScene scene = test::MakeTestScene(scene_options);
@@ -216,9 +224,8 @@ TEST(NavBundleAdjuster, DiveOffsetsRecoverTheBiasWithinTheirCovariance) {
 // (sigma_v / RMS)^2 small, 1.25-2x on uwsim's multi-dive surveys.
 TEST(NavBundleAdjuster, OffsetSigmasAreThoseOfTheBundleCovariance) {
   const test::TestScene scene = test::MakeTestScene(TwoDiveSceneOptions());
-  NavBundleAdjustmentOptions options = test::FixedIntrinsics();
-  options.weight_px_per_m = 2.0;  // not the noise ratio: the weights follow
-  options.dive_offsets = true;
+  // Not the noise ratio: the covariance follows the weights.
+  const NavBundleAdjustmentOptions options = WithOffsets(2.0);
   Reconstruction model = scene.observed;
   const NavBundleAdjustmentReport report =
       AdjustWithNavigation(options, scene.priors, nullptr, {}, &model);
@@ -236,6 +243,61 @@ TEST(NavBundleAdjuster, OffsetSigmasAreThoseOfTheBundleCovariance) {
       << expected.diagonal().cwiseSqrt().transpose() << " m\n";
   EXPECT_LT((*report.dive_offsets[1].covariance - expected).norm(),
             1e-6 * expected.norm());
+}
+
+// An image that sees one point has a rotation the images do not fix: the
+// whole problem is rank deficient, yet the offsets are not, as that
+// image's prior tells nothing of them. The offsets' covariance leaves it
+// out (and says so), and comes out as that of the scene without it; a
+// covariance that cannot be computed is warned of, not only noted.
+TEST(NavBundleAdjuster, OffsetSigmasLeaveOutImagesTheImagesDoNotFix) {
+  test::TestScene scene = test::MakeTestScene(TwoDiveSceneOptions());
+  const image_t lonely = 5;
+  bool kept_one = false;
+  for (Point3D& point : scene.observed.Points3D()) {
+    if (point.track.size() < 3) continue;
+    for (auto it = point.track.begin(); it != point.track.end(); ++it) {
+      if (it->image_id != lonely) continue;
+      if (!kept_one) {
+        kept_one = true;
+        break;
+      }
+      Image& image = scene.observed.Images()[lonely - 1];
+      ASSERT_EQ(image.image_id, lonely);
+      image.points2D[it->point2D_idx].point3D_id = kInvalidPoint3DId;
+      point.track.erase(it);
+      break;
+    }
+  }
+  NavBundleAdjustmentOptions options = WithOffsets(5.0);
+  Reconstruction model = scene.observed;
+  const NavBundleAdjustmentReport report =
+      AdjustWithNavigation(options, scene.priors, nullptr, {}, &model);
+  ASSERT_EQ(report.dive_offsets.size(), 2u);
+  ASSERT_TRUE(report.dive_offsets[1].covariance) << report.covariance_note;
+  EXPECT_NE(report.covariance_note.find("1 image that sees fewer than 3 "
+                                        "points seen twice (e.g. img5.png)"),
+            std::string::npos)
+      << report.covariance_note;
+  // Without the image and its prior: the same offsets' covariance, to the
+  // little its one point told.
+  std::vector<ImagePosePrior> others;
+  for (const ImagePosePrior& prior : scene.priors) {
+    if (prior.image_id != lonely) others.push_back(prior);
+  }
+  Reconstruction again = model;
+  options.max_num_iterations = 0;
+  const NavBundleAdjustmentReport without =
+      AdjustWithNavigation(options, others, nullptr, {}, &again);
+  ASSERT_TRUE(without.dive_offsets[1].covariance);
+  const Eigen::Vector3d sigma =
+      report.dive_offsets[1].covariance->diagonal().cwiseSqrt();
+  const Eigen::Vector3d expected =
+      without.dive_offsets[1].covariance->diagonal().cwiseSqrt();
+  std::cout << "[ figures ] dive 2 offset sigmas " << sigma.transpose()
+            << " m, without the image " << expected.transpose() << " m\n";
+  EXPECT_LT((sigma - expected).cwiseAbs().maxCoeff(),
+            0.01 * expected.maxCoeff());
 }
 
 // The angle (deg) between the first and the last camera's orientation,

@@ -190,8 +190,8 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
          fmt::format("Priors: {} images ({} rows of images not in the "
                      "model, left out)",
                      inputs.priors.size(), inputs.num_priors_without_image));
-    if (!inputs.world_frame.empty()) {
-      Emit(progress, "World frame: " + inputs.world_frame);
+    if (inputs.world_frame) {
+      Emit(progress, "World frame: " + WorldFrameText(*inputs.world_frame));
     }
   }
   return AdjustModelWithNavigation(options, inputs, model, progress);
@@ -200,11 +200,13 @@ NavBundleAdjustmentResult AdjustModelWithNavigation(
 namespace {
 
 // Dives none of whose images share a point that 3 images see with the
-// largest linked group, which holds other dives: the images do not tie
-// them to the rest, so such a dive's offset is its prior's alone (zero,
-// +- --Dive.offset_sigma), and whatever bias its navigation has stays in
-// the model. Seen on the seafloor: a third dive 10 % overlapping, offset
-// 0 +- 10 m where the bias was 1.2 m.
+// largest linked group, which holds other dives: only points 2 images see
+// can tie them to the rest, so such a dive's offset is weakly measured or
+// its prior's alone (zero, +- --Dive.offset_sigma), and whatever bias its
+// navigation has that the images miss stays in the model. Seen on the
+// seafloor: a third dive 10 % overlapping, offset 0 +- 10 m where the bias
+// was 1.2 m; on the scarp, a third dive tied by 2-view points, its offset
+// 6 cm from the truth.
 std::vector<std::string> DivesApartWarnings(
     const Reconstruction& model, const std::vector<ImagePosePrior>& priors) {
   const std::vector<image_t> apart = ImagesWithoutScaleTransfer(model);
@@ -219,10 +221,12 @@ std::vector<std::string> DivesApartWarnings(
     if (counts.first > 0 || linked_and_apart.size() < 2) continue;
     warnings.push_back(fmt::format(
         "dive {}: none of its {} images shares a point that 3 images see "
-        "with the largest linked group of images, so the images do not tie "
-        "it to the other dives: its offset is its prior's (0 +- "
-        "--Dive.offset_sigma), not a measurement, and its navigation's bias "
-        "stays in the model. Track more points where the dives overlap",
+        "with the largest linked group of images, so the images tie it to "
+        "the other dives at most through points that 2 images see: its "
+        "offset is weakly measured, or only its prior (0 +- "
+        "--Dive.offset_sigma), as its sigma shows, and what of its "
+        "navigation's bias the images do not measure stays in the model. "
+        "Track more points where the dives overlap",
         dive, counts.second));
   }
   return warnings;
@@ -378,7 +382,8 @@ nlohmann::json NavBundleAdjustmentJson(
       {"database_path", options.priors.database_path},
       {"camera_on_vehicle", DescribeNavToCamera(nav.nav_to_camera)},
       {"rig_config", nav.rig_config_path.string()},
-      {"world_frame", result.world_frame}};
+      {"world_frame",
+       result.world_frame ? WorldFrameText(*result.world_frame) : ""}};
   if (result.noise_levels) {
     context["noise_levels"] = NoiseLevelsJson(*result.noise_levels);
   }

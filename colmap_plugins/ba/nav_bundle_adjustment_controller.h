@@ -76,8 +76,8 @@ struct NavBundleAdjustmentResult {
   // Posterior strategy with priors: the similarity applied after the plain
   // adjustment.
   std::optional<Sim3d> world_from_adjusted_model;
-  // The priors' frame (NavInputs::world_frame).
-  std::string world_frame;
+  // The priors' frame (NavInputs::world_frame), world_frame.json's.
+  std::optional<NavLogFrame> world_frame;
   // From the initial alignment to the end of the adjustment.
   double total_time_s = 0.0;
 };

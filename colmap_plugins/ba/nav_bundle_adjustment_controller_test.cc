@@ -341,7 +341,8 @@ TEST(NavBundleAdjustmentController, APositionOnlyLogIsFusedWithoutAttitude) {
   options.adjuster.use_attitude = false;
   const NavBundleAdjustmentResult result =
       AdjustModelWithNavigation(options, &model);
-  EXPECT_EQ(result.world_frame, "the log's x,y,z (m)");
+  ASSERT_TRUE(result.world_frame);
+  EXPECT_EQ(WorldFrameText(*result.world_frame), "the log's x,y,z (m)");
   EXPECT_EQ(
       NavBundleAdjustmentJson(options, result, model)["run"]["world_frame"],
       "the log's x,y,z (m)");

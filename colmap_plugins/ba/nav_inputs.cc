@@ -96,7 +96,7 @@ NavInputs LoadNavInputs(const NavInputOptions& options,
     }
     inputs.num_priors_without_image += loaded.other_images.size();
     inputs.warnings = loaded.warnings;
-    inputs.world_frame = WorldFrameText(loaded.frame);
+    inputs.world_frame = loaded.frame;
     return inputs;
   }
   if (!options.database_path.empty()) {
@@ -109,7 +109,7 @@ NavInputs LoadNavInputs(const NavInputOptions& options,
                            options.database_path, &frame, &warnings),
         model, options.position_sigma_m, options.override_sigma);
     inputs.warnings = warnings;
-    if (frame.origin) inputs.world_frame = WorldFrameText(frame);
+    if (frame.origin) inputs.world_frame = frame;
     return inputs;
   }
   return {};

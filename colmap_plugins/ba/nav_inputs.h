@@ -26,8 +26,9 @@ struct NavInputs {
   size_t num_priors_without_image = 0;
   // What the navigation log alone shows to be suspect.
   std::vector<std::string> warnings;
-  // The priors' frame: a log's (WorldFrameText), empty for a database's.
-  std::string world_frame;
+  // The priors' frame: a log's, or a database's WGS84 priors' local one;
+  // none for a database's metric priors, whose frame is theirs.
+  std::optional<NavLogFrame> world_frame;
 };
 
 // Where the priors of the navigation-fused adjustment come from

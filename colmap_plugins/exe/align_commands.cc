@@ -87,6 +87,12 @@ void RunModelAligner(const ModelAlignerOptions& options) {
   WriteModel(model, options.output_path, files.format);
   fmt::print("Wrote {} ({})\n", options.output_path,
              files.format == ModelFormat::kBinary ? "binary" : "text");
+  if (alignment.world_frame) {
+    // The model's frame beside it, in a form a GIS reads.
+    const fs::path path = fs::path(options.output_path) / "world_frame.json";
+    WriteJson(WorldFrameJson(*alignment.world_frame), path);
+    fmt::print("Wrote {}\n", path.string());
+  }
   if (!options.transform_path.empty()) {
     WriteJson(ModelAlignmentJson(alignment), options.transform_path);
     fmt::print("Wrote {}\n", options.transform_path);

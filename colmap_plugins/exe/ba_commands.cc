@@ -273,6 +273,13 @@ void RunBundleAdjuster(const BundleAdjusterOptions& options) {
   std::vector<PendingFile> report = {
       {output / "ba_report.json",
        [&](std::ostream& out) { out << json.dump(2) << "\n"; }}};
+  // The model's frame beside it, in a form a GIS reads.
+  if (result.world_frame) {
+    report.push_back({output / "world_frame.json", [&](std::ostream& out) {
+                        out << WorldFrameJson(*result.world_frame).dump(2)
+                            << "\n";
+                      }});
+  }
   if (result.lcurve) {
     for (const PendingFile& figure :
          FigureFileSet(lcurve_figures, LCurveFigurePaths(output))) {
@@ -281,6 +288,7 @@ void RunBundleAdjuster(const BundleAdjusterOptions& options) {
   }
   WriteFilesAtomically(report, true);
   std::cout << "Wrote " << options.output_path << " (model, ba_report.json"
+            << (result.world_frame ? ", world_frame.json" : "")
             << (result.lcurve ? ", lcurve.png, lcurve_curvature.png" : "")
             << ")\n";
   if (covariance) {

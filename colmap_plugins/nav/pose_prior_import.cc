@@ -78,6 +78,26 @@ std::string WorldFrameText(const NavLogFrame& frame) {
   return text;
 }
 
+nlohmann::json WorldFrameJson(const NavLogFrame& frame) {
+  nlohmann::json json = {{"format", "uwmetric-world-frame"},
+                         {"version", 1},
+                         {"description", WorldFrameText(frame)},
+                         {"units", "m"},
+                         {"read_from", frame.position_columns}};
+  if (frame.origin) {
+    json["axes"] = {"east", "north", "up"};
+    json["origin"] = {{"lat_deg", frame.origin->lat_deg},
+                      {"lon_deg", frame.origin->lon_deg},
+                      {"height_m", frame.origin->height_m},
+                      {"datum", "WGS84"}};
+    json["origin_automatic"] = frame.origin_automatic;
+  } else {
+    json["axes"] = {"the log's x", "the log's y", "the log's z"};
+    json["origin"] = nullptr;
+  }
+  return json;
+}
+
 LoadedCameraPriors LoadCameraPriors(
     const PosePriorImportOptions& options,
     const std::vector<std::pair<std::string, camera_t>>& images,

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "colmap_plugins/nav/camera_mount.h"
 #include "colmap_plugins/nav/camera_prior.h"
 #include "colmap_plugins/nav/nav_csv.h"
@@ -35,6 +37,12 @@ struct PosePriorImportOptions {
 // geographic log's local east-north-up at its origin (with the --origin
 // that reuses an automatic one).
 std::string WorldFrameText(const NavLogFrame& frame);
+
+// world_frame.json (docs/formats.md), written beside a model fused with or
+// aligned to the log: the frame its coordinates are in, in a form a GIS or
+// a script reads (origin in WGS84 degrees and metres, axes, units), so
+// that a model in local metres keeps its place on the Earth.
+nlohmann::json WorldFrameJson(const NavLogFrame& frame);
 
 struct PosePriorImportSummary {
   DatabaseSchema schema = DatabaseSchema::kColmap38;

@@ -2,10 +2,14 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "colmap_plugins/align/similarity_with_offsets.h"
 #include "colmap_plugins/nav/nav_csv.h"
+#include "colmap_plugins/scene/model_io.h"
 #include "common/util/error.h"
 #include "common/util/file.h"
 #include "common/util/subprocess.h"
@@ -15,6 +19,40 @@
 namespace uw::testing {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// MultiDiveChain::ideal_offset_errors' fit, over the images of `model`.
+SimilarityWithOffsets IdealOffsets(const std::vector<NavRecord>& logged,
+                                   const std::vector<NavRecord>& truth,
+                                   const Reconstruction& model,
+                                   int reference_dive) {
+  std::set<std::string> registered;
+  for (const Image& image : model.Images()) registered.insert(image.name);
+  std::vector<Eigen::Vector3d> true_positions, logged_positions;
+  std::vector<Eigen::Matrix3d> covariances;
+  std::vector<int> dives;
+  for (size_t i = 0; i < logged.size(); ++i) {
+    if (truth[i].image_name != logged[i].image_name) {
+      throw ErrorAt("row ", i + 1, " of uwsim's logs names ",
+                    logged[i].image_name, " and, in the truth, ",
+                    truth[i].image_name);
+    }
+    if (registered.count(logged[i].image_name) == 0) continue;
+    true_positions.push_back(truth[i].position);
+    logged_positions.push_back(logged[i].position);
+    covariances.push_back(
+        logged[i].position_sigma.cwiseAbs2().asDiagonal().toDenseMatrix());
+    dives.push_back(logged[i].dive);
+  }
+  const SimilarityWithOffsets fit = EstimateSimilarityWithOffsets(
+      true_positions, logged_positions, covariances, dives, reference_dive,
+      SimilarityWithOffsetsOptions());
+  if (!fit.converged) throw ErrorAt("the ideal offsets' fit did not converge");
+  return fit;
+}
+
+}  // namespace
 
 MultiDiveChain RunMultiDiveChain(const fs::path& bin_dir,
                                  const fs::path& config, const fs::path& dir,
@@ -70,6 +108,7 @@ MultiDiveChain RunMultiDiveChain(const fs::path& bin_dir,
           " --BundleAdjustment.refine_extra_params 0 --Dive.offsets 1",
       true);
   chain.exit_code = adjusted.exit_code;
+  chain.output_dir = dir / "ba";
   chain.output = adjusted.output;
   if (adjusted.exit_code != 0) return chain;
   const nlohmann::json report =
@@ -80,6 +119,8 @@ MultiDiveChain RunMultiDiveChain(const fs::path& bin_dir,
       report.at("run").at("noise_levels").at("nav_sigma_m").get<double>();
   chain.warnings = report.at("warnings").get<std::vector<std::string>>();
   const int reference = report.at("dive_offsets").at(0).at("dive").get<int>();
+  const SimilarityWithOffsets ideal =
+      IdealOffsets(logged, truth, ReadModel(dir / "ba"), reference);
   for (const nlohmann::json& offset : report.at("dive_offsets")) {
     const int dive = offset.at("dive").get<int>();
     if (dive == reference) continue;
@@ -93,6 +134,12 @@ MultiDiveChain RunMultiDiveChain(const fs::path& bin_dir,
     }
     chain.dives.push_back(dive);
     chain.offset_errors.push_back(error);
+    Eigen::Vector3d ideal_error;
+    for (int k = 0; k < 3; ++k) {
+      ideal_error(k) =
+          offset.at("offset_m")[k].get<double>() - ideal.offsets.at(dive)(k);
+    }
+    chain.ideal_offset_errors.push_back(ideal_error);
     chain.offset_sigmas.push_back(sigma);
   }
   return chain;

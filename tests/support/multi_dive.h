@@ -15,7 +15,8 @@ namespace uw::testing {
 struct MultiDiveChain {
   int exit_code = -1;
   std::string output;
-  std::string termination;  // ba_report.json's, "" without a report
+  std::filesystem::path output_dir;  // bundle_adjuster's --output_path
+  std::string termination;           // ba_report.json's, "" without a report
   int iterations = 0;
   // RMS per axis of the logged navigation minus the truth minus the dive's
   // bias (what the navigation's noise really was), m.
@@ -27,6 +28,13 @@ struct MultiDiveChain {
   std::vector<int> dives;
   std::vector<Eigen::Vector3d> offset_errors;
   std::vector<Eigen::Vector3d> offset_sigmas;
+  // The offset minus the ideal estimate's: the joint least-squares fit of
+  // a similarity and the offsets (similarity_with_offsets.h) of the true
+  // vehicle positions to the logged ones of the registered images,
+  // weighted by the stated sigmas. It is what the logs allow: a dive's
+  // mean navigation error (a drift over a long dive) moves it from the
+  // bias uwsim applied, and no estimator can tell the two apart.
+  std::vector<Eigen::Vector3d> ideal_offset_errors;
   std::vector<std::string> warnings;
 };
 
