@@ -332,6 +332,13 @@ TEST(ModelAligner, GpsReferencesAlignInLocalEastNorthUp) {
   EXPECT_EQ(frame.at("axes"), nlohmann::json({"east", "north", "up"}));
   EXPECT_EQ(frame.at("origin_automatic"), false);
   EXPECT_FALSE(fs::exists(dir / "metric" / "world_frame.json"));
+  // Aligned again into that folder, to metric references: the old frame
+  // would lie, and goes.
+  const auto again =
+      Uwcolmap(InOut(kSparseDir, dir / "gps") + " --ref_images_path " +
+               Quoted(kRefImages) + " --robust_alignment 0");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_FALSE(fs::exists(dir / "gps" / "world_frame.json"));
 
   // Without --origin: the first reference rounded, printed for reuse.
   const auto automatic = Uwcolmap(InOut(kSparseDir, dir / "automatic") +

@@ -49,8 +49,9 @@ TEST(DifferenceNoise, FollowsTheWhiteNoiseAndNotASmoothDeparture) {
         const auto noise = EstimateDifferenceNoise(residuals, lag);
         ASSERT_TRUE(noise);
         EXPECT_EQ(noise->num_differences, 3 * (200 - 2 * lag));
-        // 600 differences: the scale to about 5 % (two neighbours share
-        // each sample, so less than the 3 % of independent ones).
+        // 600 differences: the scale to 2.3 % (RelativeSigma; neighbouring
+        // differences correlate, so more than the 1.7 % of independent
+        // ones).
         EXPECT_NEAR(noise->scale, sigma, 0.1 * sigma)
             << "sigma " << sigma << " bend " << bend_m << " lag " << lag;
       }

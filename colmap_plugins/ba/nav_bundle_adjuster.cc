@@ -913,6 +913,9 @@ void Adjustment::EstimateOffsetCovariance(NavBundleAdjustmentReport* report) {
     report->covariance_note =
         "covariance not computed: the images have no redundancy to "
         "estimate their pixel noise";
+    report->warnings.push_back(
+        "the dive offsets have no uncertainty: the images have no "
+        "redundancy to estimate their pixel noise");
     return;
   }
   const double rms_px = std::sqrt(SumSquaredReprojection() / redundancy);
@@ -933,13 +936,16 @@ void Adjustment::EstimateOffsetCovariance(NavBundleAdjustmentReport* report) {
   ceres::Problem problem(problem_options);
   Build(weights, &problem, nullptr);
   const UndeterminedByImages undetermined = FindUndeterminedByImages();
+  // Only blocks the problem holds: an image without observations, prior or
+  // rig term was never added (Ceres aborts on removing a block it lacks).
+  const auto remove = [&](double* block) {
+    if (problem.HasParameterBlock(block)) problem.RemoveParameterBlock(block);
+  };
   for (const size_t i : undetermined.images) {
-    problem.RemoveParameterBlock(poses_[i].rotation);
-    problem.RemoveParameterBlock(poses_[i].translation);
+    remove(poses_[i].rotation);
+    remove(poses_[i].translation);
   }
-  for (const point3D_t id : undetermined.points) {
-    problem.RemoveParameterBlock(points_.at(id).data());
-  }
+  for (const point3D_t id : undetermined.points) remove(points_.at(id).data());
   const std::string left_out =
       undetermined.images.empty()
           ? std::string()

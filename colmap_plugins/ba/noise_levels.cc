@@ -22,8 +22,12 @@ namespace {
 constexpr double kMinDepartureRatio = 1.25;
 // Differences over 2 images exceeding those over 1 by less than this are
 // not taken for shared errors, whatever the count (a gentle bend of the
-// model raises those over 2 a little).
-constexpr double kMinSharedErrorRatio = 1.5;
+// model raises those over 2 a little). A filtered log whose neighbouring
+// errors correlate by rho (first order) gives sqrt(1 + rho) at most: 1.18
+// at rho 0.4, 1.28 at 0.5, 1.41 at 0.9; seen at 1.2 and beyond only with
+// enough differences for the 3-sigma test (about 75 at rho 0.5). uwsim's
+// 15 multi-dive chains: 0.68-1.18.
+constexpr double kMinSharedErrorRatio = 1.2;
 
 // Replaces levels->nav_scale (the similarity's) by the second differences'
 // (difference_noise.h) unless neighbouring images share their errors, and
@@ -79,7 +83,9 @@ void ChooseDifferenceScale(
         "the images-only model departs from the navigation smoothly along the "
         "track: the residuals of their similarity are {:.3g}x the navigation's "
         "noise from one image to the next. The images bend the model, or tie "
-        "the dives by few points, or the navigation drifts{}; the noise "
+        "the dives by few points, or the navigation drifts or is filtered "
+        "(neighbours sharing their errors, which the differences miss){}; "
+        "the noise "
         "level (and lambda) is the one from image to image, which a drift "
         "exceeds",
         departure,

@@ -87,11 +87,15 @@ void RunModelAligner(const ModelAlignerOptions& options) {
   WriteModel(model, options.output_path, files.format);
   fmt::print("Wrote {} ({})\n", options.output_path,
              files.format == ModelFormat::kBinary ? "binary" : "text");
+  // The model's frame beside it, in a form a GIS reads; a model in its
+  // references' own frame has none (an earlier run's would lie).
+  const fs::path frame_path =
+      fs::path(options.output_path) / "world_frame.json";
   if (alignment.world_frame) {
-    // The model's frame beside it, in a form a GIS reads.
-    const fs::path path = fs::path(options.output_path) / "world_frame.json";
-    WriteJson(WorldFrameJson(*alignment.world_frame), path);
-    fmt::print("Wrote {}\n", path.string());
+    WriteJson(WorldFrameJson(*alignment.world_frame), frame_path);
+    fmt::print("Wrote {}\n", frame_path.string());
+  } else {
+    fs::remove(frame_path);
   }
   if (!options.transform_path.empty()) {
     WriteJson(ModelAlignmentJson(alignment), options.transform_path);

@@ -287,6 +287,8 @@ void RunBundleAdjuster(const BundleAdjusterOptions& options) {
     }
   }
   WriteFilesAtomically(report, true);
+  // A model in its priors' own frame has none: an earlier run's would lie.
+  if (!result.world_frame) fs::remove(output / "world_frame.json");
   std::cout << "Wrote " << options.output_path << " (model, ba_report.json"
             << (result.world_frame ? ", world_frame.json" : "")
             << (result.lcurve ? ", lcurve.png, lcurve_curvature.png" : "")
