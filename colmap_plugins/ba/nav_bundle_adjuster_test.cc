@@ -218,6 +218,18 @@ TEST(NavBundleAdjuster, DiveOffsetsRecoverTheBiasWithinTheirCovariance) {
             0.2 * test::CameraCenterRmse(without, scene.truth));
 }
 
+// Dive 2's offset covariance by the bundle covariance (other code than the
+// adjuster's), the priors as `options` weighted them.
+Eigen::Matrix3d BundleOffsetCovariance(
+    const NavBundleAdjustmentOptions& options,
+    const std::vector<ImagePosePrior>& priors, const Reconstruction& model) {
+  BundleCovarianceOptions covariance_options;
+  covariance_options.nav_weight_px_per_m = options.weight_px_per_m;
+  return EstimateBundleCovariance(options, priors, nullptr, {}, model,
+                                  covariance_options)
+      .dive_offsets.at(2);
+}
+
 // The offsets' covariance in the report is that of the problem solved
 // (bundle_covariance.h, the priors as the adjustment weighted them). Until
 // 2026-12-07 it weighted the pixels by the residuals' RMS per coordinate,
@@ -232,11 +244,8 @@ TEST(NavBundleAdjuster, OffsetSigmasAreThoseOfTheBundleCovariance) {
       AdjustWithNavigation(options, scene.priors, nullptr, {}, &model);
   ASSERT_EQ(report.dive_offsets.size(), 2u);
   ASSERT_TRUE(report.dive_offsets[1].covariance) << report.covariance_note;
-  BundleCovarianceOptions covariance_options;
-  covariance_options.nav_weight_px_per_m = options.weight_px_per_m;
-  const BundleCovariance covariance = EstimateBundleCovariance(
-      options, scene.priors, nullptr, {}, model, covariance_options);
-  const Eigen::Matrix3d& expected = covariance.dive_offsets.at(2);
+  const Eigen::Matrix3d expected =
+      BundleOffsetCovariance(options, scene.priors, model);
   std::cout
       << "[ figures ] dive 2 offset sigmas "
       << report.dive_offsets[1].covariance->diagonal().cwiseSqrt().transpose()
@@ -300,14 +309,10 @@ TEST(NavBundleAdjuster, OffsetSigmasLeaveOutImagesTheImagesDoNotFix) {
                       point.track.end());
     without.AddPoint3D(point);
   }
-  BundleCovarianceOptions covariance_options;
-  covariance_options.nav_weight_px_per_m = options.weight_px_per_m;
-  const BundleCovariance covariance = EstimateBundleCovariance(
-      options, others, nullptr, {}, without, covariance_options);
   const Eigen::Vector3d sigma =
       report.dive_offsets[1].covariance->diagonal().cwiseSqrt();
   const Eigen::Vector3d expected =
-      covariance.dive_offsets.at(2).diagonal().cwiseSqrt();
+      BundleOffsetCovariance(options, others, without).diagonal().cwiseSqrt();
   std::cout << "[ figures ] dive 2 offset sigmas " << sigma.transpose()
             << " m, without the image " << expected.transpose() << " m\n";
   EXPECT_LT((sigma - expected).cwiseAbs().maxCoeff(),
